@@ -1,0 +1,47 @@
+"""Reading and comparing learners' answers.
+
+- :mod:`~slamcourse.answers.expr`: the safe formula evaluator (also used for course parameters).
+- :mod:`~slamcourse.answers.parse`: numbers, vectors, matrices and choice ids from text.
+- :mod:`~slamcourse.answers.compare`: tolerance windows, angle wrapping, entry comparison and
+  number formatting.
+
+Importing this package never imports numpy.
+"""
+
+from slamcourse.answers.compare import (
+    EntryComparison,
+    angle_is_close,
+    compare_entries,
+    format_number,
+    format_window,
+    is_close,
+    tolerance_window,
+    wrap_angle,
+)
+from slamcourse.answers.expr import Expression, compile_expression, evaluate_number
+from slamcourse.answers.parse import (
+    parse_ids,
+    parse_integer,
+    parse_matrix,
+    parse_number,
+    parse_vector,
+)
+
+__all__ = [
+    "EntryComparison",
+    "Expression",
+    "angle_is_close",
+    "compare_entries",
+    "compile_expression",
+    "evaluate_number",
+    "format_number",
+    "format_window",
+    "is_close",
+    "parse_ids",
+    "parse_integer",
+    "parse_matrix",
+    "parse_number",
+    "parse_vector",
+    "tolerance_window",
+    "wrap_angle",
+]

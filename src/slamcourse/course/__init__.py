@@ -1,0 +1,1 @@
+"""Course content: locating a course, loading chapters and exercises, drawing variants."""

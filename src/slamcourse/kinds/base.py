@@ -1,0 +1,113 @@
+"""What every exercise kind provides, and helpers the kinds share."""
+
+from __future__ import annotations
+
+from typing import Any, ClassVar
+
+from slamcourse.course import reference, templates
+from slamcourse.course.loader import relpath
+from slamcourse.course.model import ExerciseSpec, Misconception, Text, Variant
+from slamcourse.course.schema import Checker
+from slamcourse.course.yamlio import LineDict
+from slamcourse.errors import CourseError, Problem
+from slamcourse.verdict import Verdict
+
+
+class Kind:
+    """Base class of exercise kinds (stateless; one shared instance per kind)."""
+
+    name: ClassVar[str] = ""
+    keys: ClassVar[dict[str, bool]] = {}  # kind-specific YAML keys -> required?
+    reference_required: ClassVar[bool] = True
+    misconception_key: ClassVar[str | None] = "compute"
+
+    # ---- loading
+    def reference_optional(self, raw: LineDict) -> bool:
+        """Whether this file may omit ``reference`` (e.g. choices marked ``correct: true``)."""
+        return False
+
+    def parse(self, spec: ExerciseSpec, raw: LineDict, check: Checker) -> Any:
+        """Parse the kind-specific keys (already checked to be known) into ``spec.options``."""
+        for m in spec.misconceptions:
+            key = self.misconception_key
+            other = "function" if key == "compute" else "compute"
+            if key is None:
+                check.add(m.line, f"{self.name} exercises take feedback per choice or line, "
+                          "not 'misconceptions'")
+            elif getattr(m, other):
+                check.add(m.line, f"misconception '{m.id}': a {self.name} exercise uses "
+                          f"'{key}:', not '{other}:'")
+            elif not getattr(m, key):
+                check.add(m.line, f"misconception '{m.id}' needs '{key}: <function in reference.py>'")
+        return None
+
+    # ---- answering
+    def expected(self, spec: ExerciseSpec, variant: Variant) -> Any:
+        """The reference answer of ``variant``."""
+        raise NotImplementedError
+
+    def check(self, spec: ExerciseSpec, variant: Variant, answer: str) -> Verdict:
+        raise NotImplementedError
+
+    def how_to_answer(self, spec: ExerciseSpec, variant: Variant) -> str:
+        """One line telling the learner what form of answer is expected and what is accepted."""
+        return ""
+
+    def extra(self, spec: ExerciseSpec, variant: Variant) -> str:
+        """Markdown shown after the prompt (choices, a code listing, items to order)."""
+        return ""
+
+    # ---- validation
+    def self_test(self, spec: ExerciseSpec, variant: Variant) -> list[Problem]:
+        """Prove the variant sound: the reference answer passes; misconceptions fail and are named."""
+        return []
+
+
+# ---------------------------------------------------------------------------- helpers
+
+
+def call_reference(spec: ExerciseSpec, variant: Variant) -> Any:
+    assert spec.reference is not None
+    return reference.call(spec, spec.reference, spec.reference_line, dict(variant.params))
+
+
+def misconception_value(spec: ExerciseSpec, m: Misconception, variant: Variant) -> Any:
+    assert m.compute is not None
+    return reference.call(spec, m.compute, m.line, dict(variant.params))
+
+
+def render(spec: ExerciseSpec, text: Text, variant: Variant, **extra: Any) -> str:
+    return templates.render(spec, text, {**variant.params, **extra})
+
+
+def problem(spec: ExerciseSpec, line: int | None, message: str) -> Problem:
+    return Problem(relpath(spec.path, spec.course_root), line, message)
+
+
+def course_error(spec: ExerciseSpec, line: int | None, message: str) -> CourseError:
+    return CourseError(problem(spec, line, message))
+
+
+def misconception_verdict(spec: ExerciseSpec, m: Misconception, variant: Variant, lead: str,
+                          **details: Any) -> Verdict:
+    message = render(spec, m.message, variant)
+    return Verdict.wrong(f"{lead} {message}".strip(), misconception=m.id, **details)
+
+
+def expect_misconceptions(spec: ExerciseSpec, variant: Variant, check: Any,
+                          answer_for: Any) -> list[Problem]:
+    """Shared validator step: each misconception's answer must fail and be recognised."""
+    problems = []
+    for m in spec.misconceptions:
+        text = answer_for(m)
+        verdict = check(spec, variant, text)
+        where = f"variant {variant.seed}"
+        if verdict.passed:
+            problems.append(problem(spec, m.line, f"misconception '{m.id}' is accepted in {where} "
+                                    f"(its answer {text} is within the tolerance of the reference); "
+                                    "tighten the tolerance or add a 'require' that keeps them apart"))
+        elif verdict.misconception != m.id:
+            got = verdict.misconception or "no misconception"
+            problems.append(problem(spec, m.line, f"misconception '{m.id}' is not recognised in "
+                                    f"{where}: its answer {text} matched {got}"))
+    return problems

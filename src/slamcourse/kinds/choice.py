@@ -1,0 +1,181 @@
+"""The ``choice`` (one answer) and ``multi`` (several answers) kinds, with per-choice feedback."""
+
+from __future__ import annotations
+
+import random
+from dataclasses import dataclass
+from typing import Any, ClassVar
+
+from slamcourse.answers import parse_ids
+from slamcourse.course.model import ExerciseSpec, Variant
+from slamcourse.course.schema import Checker
+from slamcourse.course.yamlio import LineDict, LineList
+from slamcourse.errors import AnswerFormatError, Problem
+from slamcourse.kinds.base import Kind, call_reference, course_error, problem
+from slamcourse.verdict import Verdict
+
+
+@dataclass(frozen=True)
+class Choice:
+    id: str
+    text: str
+    correct: bool
+    feedback: str
+    line: int
+
+
+@dataclass(frozen=True)
+class ChoiceOptions:
+    choices: tuple[Choice, ...]
+    shuffle: bool
+
+    def ids(self) -> list[str]:
+        return [c.id for c in self.choices]
+
+    def by_id(self, cid: str) -> Choice:
+        return next(c for c in self.choices if c.id == cid)
+
+
+class ChoiceKind(Kind):
+    """Pick exactly one option."""
+
+    name: ClassVar[str] = "choice"
+    multiple: ClassVar[bool] = False
+    keys: ClassVar[dict[str, bool]] = {"choices": True, "shuffle": False}
+    misconception_key: ClassVar[str | None] = None
+
+    def reference_optional(self, raw: LineDict) -> bool:
+        items = raw.get("choices")
+        return isinstance(items, list) and any(
+            isinstance(c, dict) and c.get("correct") is True for c in items)
+
+    def parse(self, spec: ExerciseSpec, raw: LineDict, check: Checker) -> ChoiceOptions:
+        super().parse(spec, raw, check)
+        items = check.typed(raw, "choices", list, [])
+        choices: list[Choice] = []
+        for i, item in enumerate(items):
+            line = items.line_of(i) if isinstance(items, LineList) else raw.line
+            data = check.mapping(item, line, "a choice")
+            if data is None:
+                continue
+            check.keys(data, {"id", "text", "correct", "feedback"}, ("id", "text"), "a choice")
+            cid = str(check.typed(data, "id", (str, int), f"{i}")).lower()
+            if not cid.isalnum():
+                check.add(line, f"choice id '{cid}' must be letters or digits (learners type it)")
+            if cid in [c.id for c in choices]:
+                check.add(line, f"choice id '{cid}' is used twice")
+            choices.append(Choice(cid, str(check.typed(data, "text", str, "")),
+                                  bool(check.typed(data, "correct", bool, False)),
+                                  str(check.typed(data, "feedback", str, "")), line))
+        if len(choices) < 2:
+            check.add(raw.line_of("choices"), "give at least two choices")
+        flagged = [c for c in choices if c.correct]
+        if spec.reference and flagged:
+            check.add(flagged[0].line, "mark correct choices either with 'correct: true' or by "
+                      "'reference', not both")
+        if not spec.reference:
+            if not self.multiple and len(flagged) != 1:
+                check.add(raw.line_of("choices"), f"a choice exercise needs exactly one "
+                          f"'correct: true' (found {len(flagged)})")
+            if self.multiple and not flagged:
+                check.add(raw.line_of("choices"), "mark at least one choice 'correct: true'")
+        return ChoiceOptions(tuple(choices), bool(check.typed(raw, "shuffle", bool, False)))
+
+    def expected(self, spec: ExerciseSpec, variant: Variant) -> list[str]:
+        opts: ChoiceOptions = spec.options
+        if not spec.reference:
+            return [c.id for c in opts.choices if c.correct]
+        value: Any = call_reference(spec, variant)
+        ids = [str(v).lower() for v in (value if isinstance(value, list | tuple) else [value])]
+        unknown = [i for i in ids if i not in opts.ids()]
+        if unknown or not ids or (not self.multiple and len(ids) != 1):
+            raise course_error(spec, spec.reference_line, f"the reference returned {value!r}; "
+                               f"it must return {'a list of ' if self.multiple else 'one '}"
+                               f"choice id(s) from {', '.join(opts.ids())}")
+        return ids
+
+    def display_order(self, spec: ExerciseSpec, variant: Variant) -> list[Choice]:
+        opts: ChoiceOptions = spec.options
+        choices = list(opts.choices)
+        if opts.shuffle:
+            random.Random(f"{spec.id}:{variant.seed}:choices").shuffle(choices)
+        return choices
+
+    def extra(self, spec: ExerciseSpec, variant: Variant) -> str:
+        return "\n".join(f"- **{c.id})** {c.text}" for c in self.display_order(spec, variant))
+
+    def how_to_answer(self, spec: ExerciseSpec, variant: Variant) -> str:
+        ids = ", ".join(c.id for c in self.display_order(spec, variant))
+        if self.multiple:
+            return f"Answer with every option that applies, e.g. `a c` (options: {ids})."
+        return f"Answer with one option: {ids}."
+
+    def _read(self, spec: ExerciseSpec, answer: str) -> list[str]:
+        opts: ChoiceOptions = spec.options
+        picked = parse_ids(answer)
+        unknown = [p for p in picked if p not in opts.ids()]
+        if unknown:
+            raise AnswerFormatError(f"there is no option '{unknown[0]}'; choose from "
+                                    f"{', '.join(opts.ids())}")
+        return list(dict.fromkeys(picked))
+
+    def check(self, spec: ExerciseSpec, variant: Variant, answer: str) -> Verdict:
+        try:
+            picked = self._read(spec, answer)
+        except AnswerFormatError as exc:
+            return Verdict.unreadable(str(exc))
+        if len(picked) != 1:
+            return Verdict.unreadable(f"choose exactly one option (you gave {len(picked)})")
+        right = self.expected(spec, variant)
+        choice = spec.options.by_id(picked[0])
+        if picked == right:
+            return Verdict.ok(f"Correct. {choice.feedback}".strip())
+        return Verdict.wrong(f"Not quite. {choice.feedback}".strip(), picked=picked)
+
+    def self_test(self, spec: ExerciseSpec, variant: Variant) -> list[Problem]:
+        right = self.expected(spec, variant)
+        problems = []
+        if not self.check(spec, variant, " ".join(right)).passed:
+            problems.append(problem(spec, spec.line, "the correct choice is not accepted"))
+        for c in spec.options.choices:
+            if c.id not in right and self.check(spec, variant, c.id).passed:
+                problems.append(problem(spec, c.line, f"wrong choice '{c.id}' is accepted"))
+        return problems
+
+
+class MultiKind(ChoiceKind):
+    """Pick every option that applies; partial credit (right − wrong picks) / number right."""
+
+    name: ClassVar[str] = "multi"
+    multiple: ClassVar[bool] = True
+
+    def check(self, spec: ExerciseSpec, variant: Variant, answer: str) -> Verdict:
+        try:
+            picked = self._read(spec, answer)
+        except AnswerFormatError as exc:
+            return Verdict.unreadable(str(exc))
+        right = set(self.expected(spec, variant))
+        wrong_picks = [p for p in picked if p not in right]
+        hits = len([p for p in picked if p in right])
+        score = max(0.0, (hits - len(wrong_picks)) / len(right))
+        if not wrong_picks and hits == len(right):
+            return Verdict.ok("Correct: exactly the right options.")
+        parts = [f"Not quite ({hits} of {len(right)} right options picked)."]
+        for p in wrong_picks:
+            fb = spec.options.by_id(p).feedback
+            parts.append(f"{p}) does not apply. {fb}".strip())
+        missing = len(right) - hits
+        if missing:
+            parts.append(f"{missing} option{'s' if missing > 1 else ''} that appl"
+                         f"{'y' if missing > 1 else 'ies'} {'are' if missing > 1 else 'is'} missing.")
+        return Verdict.wrong(" ".join(parts), score=score, picked=picked)
+
+    def self_test(self, spec: ExerciseSpec, variant: Variant) -> list[Problem]:
+        right = self.expected(spec, variant)
+        problems = []
+        if not self.check(spec, variant, " ".join(right)).passed:
+            problems.append(problem(spec, spec.line, "the correct set of choices is not accepted"))
+        for c in spec.options.choices:
+            if c.id not in right and self.check(spec, variant, " ".join([*right, c.id])).passed:
+                problems.append(problem(spec, c.line, f"adding wrong choice '{c.id}' is accepted"))
+        return problems

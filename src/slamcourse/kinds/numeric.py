@@ -1,0 +1,316 @@
+"""Numeric kinds: ``number``, ``vector`` and ``matrix``, compared with |a − b| ≤ atol + rtol·|b|."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any, ClassVar
+
+from slamcourse.answers import (
+    compare_entries,
+    format_number,
+    is_close,
+    angle_is_close,
+    parse_integer,
+    parse_matrix,
+    parse_number,
+    parse_vector,
+    tolerance_window,
+)
+from slamcourse.course.model import ExerciseSpec, Misconception, Tolerance, Variant
+from slamcourse.course.schema import Checker
+from slamcourse.course.yamlio import LineDict
+from slamcourse.errors import AnswerFormatError, Problem
+from slamcourse.kinds.base import (
+    Kind,
+    call_reference,
+    course_error,
+    expect_misconceptions,
+    misconception_value,
+    misconception_verdict,
+    problem,
+)
+from slamcourse.verdict import Verdict
+
+
+@dataclass(frozen=True)
+class NumericOptions:
+    exact: bool = False
+    angle: bool | tuple[int, ...] = False
+    units: str = ""
+    labels: tuple[str, ...] = ()
+
+
+def describe_tolerance(tol: Tolerance, exact: bool) -> str:
+    """``within 1%`` / ``within ±0.005`` / ``within ±(0.005 + 1%)``, as told to learners."""
+    if exact:
+        return "exactly"
+    rel = f"{tol.rtol * 100:g}%" if tol.rtol > 0 else ""
+    abs_ = f"{format_number(tol.atol)}" if tol.atol >= 1e-6 else ""
+    if rel and abs_:
+        return f"within ±({abs_} + {rel} of the value)"
+    if rel:
+        return f"within {rel}"
+    if abs_:
+        return f"within ±{abs_}"
+    return "to full precision"
+
+
+def _parse_options(raw: LineDict, check: Checker, *, vector: bool) -> NumericOptions:
+    exact = bool(check.typed(raw, "exact", bool, False))
+    angle_raw = raw.get("angle", False)
+    angle: bool | tuple[int, ...] = False
+    if isinstance(angle_raw, bool):
+        angle = angle_raw
+    elif vector and isinstance(angle_raw, list) and all(
+            isinstance(i, int) and not isinstance(i, bool) and i >= 0 for i in angle_raw):
+        angle = tuple(angle_raw)
+    else:
+        form = "true, or a list of 0-based entry indices such as [1]" if vector else "true or false"
+        check.add(raw.line_of("angle"), f"'angle' must be {form}")
+    if exact and angle:
+        check.add(raw.line_of("angle"), "an answer cannot be both 'exact' and an 'angle'")
+    labels = check.typed(raw, "labels", list, []) if vector else []
+    return NumericOptions(exact, angle, str(check.typed(raw, "units", str, "")),
+                          tuple(str(x) for x in labels))
+
+
+def _to_float(spec: ExerciseSpec, value: Any, what: str, exact: bool) -> float:
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        raise course_error(spec, spec.reference_line,
+                           f"{what} must be a number, got {value!r}") from None
+    if not math.isfinite(number):
+        raise course_error(spec, spec.reference_line, f"{what} is not finite ({number})")
+    if exact and number != round(number):
+        raise course_error(spec, spec.reference_line,
+                           f"{what} is {number}, not a whole number, but the exercise is 'exact'")
+    return number
+
+
+class NumberKind(Kind):
+    """A single number; optional ``exact`` integers and ``angle`` comparison modulo 2π."""
+
+    name: ClassVar[str] = "number"
+    keys: ClassVar[dict[str, bool]] = {"exact": False, "angle": False, "units": False}
+
+    def parse(self, spec: ExerciseSpec, raw: LineDict, check: Checker) -> NumericOptions:
+        super().parse(spec, raw, check)
+        return _parse_options(raw, check, vector=False)
+
+    def expected(self, spec: ExerciseSpec, variant: Variant) -> float:
+        return _to_float(spec, call_reference(spec, variant), "the reference answer",
+                         spec.options.exact)
+
+    def accepts(self, spec: ExerciseSpec, got: float, want: float) -> bool:
+        opts: NumericOptions = spec.options
+        tol = spec.tolerance
+        if opts.exact:
+            return got == want
+        if opts.angle:
+            return angle_is_close(got, want, tol.rtol, tol.atol)
+        return is_close(got, want, tol.rtol, tol.atol)
+
+    def check(self, spec: ExerciseSpec, variant: Variant, answer: str) -> Verdict:
+        opts: NumericOptions = spec.options
+        try:
+            got = float(parse_integer(answer)) if opts.exact else parse_number(answer)
+        except AnswerFormatError as exc:
+            return Verdict.unreadable(str(exc))
+        want = self.expected(spec, variant)
+        units = f" {opts.units}" if opts.units else ""
+        if self.accepts(spec, got, want):
+            if opts.exact:
+                return Verdict.ok(f"Correct: {format_number(want)}{units}.", expected=want)
+            lo, hi = tolerance_window(want, spec.tolerance.rtol, spec.tolerance.atol)
+            mod = " (modulo 2π)" if opts.angle else ""
+            return Verdict.ok(
+                f"Correct. The reference value is {format_number(want)}{units}; answers from "
+                f"{format_number(lo)} to {format_number(hi)}{mod} are accepted.",
+                expected=want, window=[lo, hi])
+        lead = f"Not quite: {format_number(got)}{units} is not accepted."
+        for m in spec.misconceptions:
+            if self.accepts(spec, got, _to_float(spec, misconception_value(spec, m, variant),
+                                                 f"misconception '{m.id}'", False)):
+                return misconception_verdict(spec, m, variant, lead, got=got)
+        return Verdict.wrong(f"{lead} {self._diagnose(spec, got, want)}".strip(), got=got)
+
+    def _diagnose(self, spec: ExerciseSpec, got: float, want: float) -> str:
+        """Generic, safe observations about a wrong number (never the answer itself)."""
+        opts: NumericOptions = spec.options
+        if want != 0 and self.accepts(spec, -got, want):
+            return "The size is right but the sign is wrong."
+        if opts.angle and self.accepts(spec, math.radians(got), want):
+            return "That looks like degrees; give the angle in radians (e.g. pi/4 or 0.785)."
+        if want != 0 and got != 0 and not opts.exact:
+            ratio = math.log10(abs(got / want))
+            k = round(ratio)
+            if k != 0 and abs(ratio - k) < 0.01:
+                return (f"Your value is off by a factor of 10^{k}: check the units and the "
+                        "decimal point.")
+        return ""
+
+    def how_to_answer(self, spec: ExerciseSpec, variant: Variant) -> str:
+        opts: NumericOptions = spec.options
+        units = f" in {opts.units}" if opts.units else ""
+        if opts.exact:
+            return f"Answer with a whole number{units}."
+        angle = " Angles are in radians and compared modulo 2π." if opts.angle else ""
+        return (f"Answer with a number{units} (e.g. 0.25, 7/5, pi/4, sqrt(2)/2); accepted "
+                f"{describe_tolerance(spec.tolerance, False)}.{angle}")
+
+    def answer_text(self, value: float, exact: bool) -> str:
+        return str(int(round(value))) if exact else repr(float(value))
+
+    def self_test(self, spec: ExerciseSpec, variant: Variant) -> list[Problem]:
+        want = self.expected(spec, variant)
+        problems = []
+        text = self.answer_text(want, spec.options.exact)
+        verdict = self.check(spec, variant, text)
+        if not verdict.passed:
+            problems.append(problem(spec, spec.reference_line, f"variant {variant.seed}: the "
+                                    f"reference answer {text} is not accepted: {verdict.feedback}"))
+
+        def answer_for(m: Misconception) -> str:
+            value = _to_float(spec, misconception_value(spec, m, variant), f"misconception "
+                              f"'{m.id}'", False)
+            return self.answer_text(value, spec.options.exact and value == round(value))
+
+        return problems + expect_misconceptions(spec, variant, self.check, answer_for)
+
+
+class VectorKind(Kind):
+    """A vector of numbers, compared entry by entry; ``angle`` marks entries compared mod 2π."""
+
+    name: ClassVar[str] = "vector"
+    ndim: ClassVar[int] = 1
+    keys: ClassVar[dict[str, bool]] = {"exact": False, "angle": False, "units": False,
+                                       "labels": False}
+
+    def parse(self, spec: ExerciseSpec, raw: LineDict, check: Checker) -> NumericOptions:
+        super().parse(spec, raw, check)
+        return _parse_options(raw, check, vector=self.ndim == 1)
+
+    def _array(self, spec: ExerciseSpec, value: Any, what: str) -> list[Any]:
+        import numpy as np
+
+        try:
+            arr = np.asarray(value, dtype=float)
+        except (TypeError, ValueError):
+            raise course_error(spec, spec.reference_line,
+                               f"{what} must be a {self.name} of numbers, got {value!r}") from None
+        if arr.ndim != self.ndim or arr.size == 0:
+            raise course_error(spec, spec.reference_line, f"{what} must be a {self.ndim}-D "
+                               f"{self.name}, got shape {arr.shape}")
+        if not np.all(np.isfinite(arr)):
+            raise course_error(spec, spec.reference_line, f"{what} has non-finite entries")
+        result: list[Any] = arr.tolist()
+        return result
+
+    def expected(self, spec: ExerciseSpec, variant: Variant) -> list[Any]:
+        return self._array(spec, call_reference(spec, variant), "the reference answer")
+
+    def _parse(self, answer: str) -> list[Any]:
+        return parse_vector(answer)
+
+    def _compare(self, spec: ExerciseSpec, got: list[Any], want: list[Any]) -> Any:
+        opts: NumericOptions = spec.options
+        return compare_entries(got, want, spec.tolerance.rtol, spec.tolerance.atol,
+                               angle=opts.angle, exact=opts.exact)
+
+    def _entry_name(self, spec: ExerciseSpec, index: tuple[int, ...]) -> str:
+        labels = spec.options.labels
+        if self.ndim == 1:
+            label = f" ({labels[index[0]]})" if index[0] < len(labels) else ""
+            return f"{index[0] + 1}{label}"
+        return "(" + ", ".join(str(i + 1) for i in index) + ")"
+
+    def check(self, spec: ExerciseSpec, variant: Variant, answer: str) -> Verdict:
+        try:
+            got = self._parse(answer)
+        except AnswerFormatError as exc:
+            return Verdict.unreadable(str(exc))
+        want = self.expected(spec, variant)
+        result = self._compare(spec, got, want)
+        if not result.shape_ok:
+            return Verdict.wrong(f"Expected {self._shape_words(result.expected_shape)}, but your "
+                                 f"answer has {self._shape_words(result.got_shape)}.")
+        if result.ok:
+            return Verdict.ok(f"Correct. Accepted {describe_tolerance(spec.tolerance, spec.options.exact)} "
+                              "entry by entry.", expected=want)
+        total = _size(want)
+        score = (total - len(result.wrong)) / total
+        lead = "Not quite."
+        for m in spec.misconceptions:
+            value = self._array(spec, misconception_value(spec, m, variant),
+                                f"misconception '{m.id}'")
+            if self._compare(spec, got, value).ok:
+                return misconception_verdict(spec, m, variant, lead, wrong=_lists(result.wrong))
+        negated = _negate(got)
+        if self._compare(spec, negated, want).ok:
+            return Verdict.wrong(f"{lead} Every entry has the wrong sign.", score=score,
+                                 wrong=_lists(result.wrong))
+        names = ", ".join(self._entry_name(spec, i) for i in result.wrong)
+        word = "entry" if len(result.wrong) == 1 else "entries"
+        right = " The other entries are right." if len(result.wrong) < total else ""
+        return Verdict.wrong(f"{lead} Wrong {word}: {names}.{right}", score=score,
+                             wrong=_lists(result.wrong))
+
+    def _shape_words(self, shape: tuple[int, ...]) -> str:
+        if len(shape) == 1:
+            return f"{shape[0]} entries"
+        if len(shape) == 2:
+            return f"{shape[0]} rows of {shape[1]}"
+        return f"shape {shape}"
+
+    def how_to_answer(self, spec: ExerciseSpec, variant: Variant) -> str:
+        units = f" (in {spec.options.units})" if spec.options.units else ""
+        tol = describe_tolerance(spec.tolerance, spec.options.exact)
+        return (f"Answer with a vector{units} such as [0.3, -0.09] or 0.3 -0.09; each entry "
+                f"accepted {tol}.")
+
+    def answer_text(self, value: list[Any]) -> str:
+        return repr(value)
+
+    def self_test(self, spec: ExerciseSpec, variant: Variant) -> list[Problem]:
+        want = self.expected(spec, variant)
+        problems = []
+        verdict = self.check(spec, variant, self.answer_text(want))
+        if not verdict.passed:
+            problems.append(problem(spec, spec.reference_line, f"variant {variant.seed}: the "
+                                    f"reference answer {want} is not accepted: {verdict.feedback}"))
+
+        def answer_for(m: Misconception) -> str:
+            return self.answer_text(self._array(spec, misconception_value(spec, m, variant),
+                                                f"misconception '{m.id}'"))
+
+        return problems + expect_misconceptions(spec, variant, self.check, answer_for)
+
+
+class MatrixKind(VectorKind):
+    """A matrix of numbers (``[[1, 2], [3, 4]]`` or ``[1 2; 3 4]``), compared entry by entry."""
+
+    name: ClassVar[str] = "matrix"
+    ndim: ClassVar[int] = 2
+    keys: ClassVar[dict[str, bool]] = {"exact": False, "angle": False, "units": False}
+
+    def _parse(self, answer: str) -> list[Any]:
+        return parse_matrix(answer)
+
+    def how_to_answer(self, spec: ExerciseSpec, variant: Variant) -> str:
+        tol = describe_tolerance(spec.tolerance, spec.options.exact)
+        return (f"Answer with a matrix such as [[1, 2], [3, 4]] or [1 2; 3 4]; each entry "
+                f"accepted {tol}.")
+
+
+def _size(value: list[Any]) -> int:
+    return sum(_size(v) for v in value) if isinstance(value, list) else 1
+
+
+def _negate(value: Any) -> Any:
+    return [_negate(v) for v in value] if isinstance(value, list) else -value
+
+
+def _lists(indices: list[tuple[int, ...]]) -> list[list[int]]:
+    return [list(i) for i in indices]

@@ -1,0 +1,193 @@
+"""The parent's side of the worker protocol: encoding arguments, decoding untrusted replies.
+
+Frames are single lines of JSON. Requests (parent → worker)::
+
+    {"id": 1, "op": "load", "source": "...", "filename": "f.py", "function": "f", "params": [...]}
+    {"id": 2, "op": "call", "args": [...]}
+
+Inside ``args`` tuples, dicts and numpy arrays are tagged so that they arrive as such:
+``{"$tuple": [...]}``, ``{"$dict": [[key, value], ...]}``, ``{"$ndarray": [...], "$dtype": "float64"}``.
+
+Replies (worker → parent) are *untrusted*: :func:`decode_frame` accepts at most one JSON object
+of at most ``frame_bytes`` bytes, refuses huge integers and deep nesting, maps ``NaN`` and
+``Infinity`` to floats (callers must reject non-finite values), and turns
+``{"unsupported": "<type>"}`` markers into :class:`Unsupported` values. Nothing is ever
+unpickled or evaluated.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from slamcourse.errors import GraderError
+
+MAX_DEPTH = 64
+MAX_INT_DIGITS = 4000  # Python refuses int(str) beyond 4300 digits; stay below
+MAX_TEXT = 2000
+MAX_FRAMES = 20
+
+_CONSTANTS = {"NaN": math.nan, "Infinity": math.inf, "-Infinity": -math.inf}
+
+
+class ProtocolViolation(Exception):
+    """A reply that breaks the protocol. Never shown as a pass; the worker is killed."""
+
+
+@dataclass(frozen=True)
+class Unsupported:
+    """A value the learner returned that cannot cross the sandbox boundary (e.g. a dict,
+    a generator, a float subclass or an object with a custom ``__eq__``)."""
+
+    type_name: str
+
+    def __str__(self) -> str:
+        return f"<unsupported value of type {self.type_name}>"
+
+
+@dataclass(frozen=True)
+class LearnerFrame:
+    """One traceback frame from the learner's own file."""
+
+    line: int
+    text: str
+    function: str
+
+
+# -- text -----------------------------------------------------------------------------------
+
+_CONTROL = re.compile(r"[\x00-\x08\x0b-\x1f\x7f-\x9f\u200e\u200f\u202a-\u202e\u2066-\u2069]")
+
+
+def clean_text(data: bytes | str, limit: int | None = None) -> str:
+    """Decode untrusted output for display: invalid UTF-8 replaced, control characters
+    (escape sequences, bidi overrides; not newlines and tabs) removed."""
+    text = data.decode("utf-8", errors="replace") if isinstance(data, bytes) else data
+    text = _CONTROL.sub("", text.replace("\r\n", "\n"))
+    if limit is not None and len(text) > limit:
+        text = text[:limit] + "…"
+    return text
+
+
+# -- requests -------------------------------------------------------------------------------
+
+
+def encode_request(frame: dict[str, Any]) -> bytes:
+    """One request line. ``args`` (if present) is tagged with :func:`encode_arg`."""
+    if "args" in frame:
+        frame = {**frame, "args": [encode_arg(a, 0) for a in frame["args"]]}
+    return (json.dumps(frame, allow_nan=True, separators=(",", ":")) + "\n").encode()
+
+
+def encode_arg(value: Any, depth: int = 0) -> Any:
+    """Plain data for one argument; raises :class:`GraderError` for anything else."""
+    if depth > MAX_DEPTH:
+        raise GraderError("argument nested too deeply to send to the sandbox")
+    if value is None or isinstance(value, bool | int | float | str):
+        if isinstance(value, int) and not isinstance(value, bool) and value.bit_length() > 10_000:
+            raise GraderError("integer argument too large to send to the sandbox")
+        return value if type(value) in (type(None), bool, int, float, str) else _plain(value)
+    if isinstance(value, np.generic) and value.dtype.kind in "biuf":
+        return value.item()
+    if isinstance(value, tuple):
+        return {"$tuple": [encode_arg(v, depth + 1) for v in value]}
+    if isinstance(value, list):
+        return [encode_arg(v, depth + 1) for v in value]
+    if isinstance(value, dict):
+        return {"$dict": [[encode_arg(k, depth + 1), encode_arg(v, depth + 1)]
+                          for k, v in value.items()]}
+    if isinstance(value, np.ndarray) and value.dtype.kind in "biuf":
+        return {"$ndarray": value.tolist(), "$dtype": value.dtype.name}
+    raise GraderError(f"cannot send a {type(value).__name__} to the sandbox")
+
+
+def _plain(value: bool | int | float | str) -> bool | int | float | str:
+    """Subclasses of the basic types (e.g. IntEnum) become the basic type."""
+    for kind in (bool, int, float, str):
+        if isinstance(value, kind):
+            return kind(value)
+    raise GraderError(f"cannot send a {type(value).__name__} to the sandbox")
+
+
+# -- replies --------------------------------------------------------------------------------
+
+
+def _parse_int(text: str) -> int:
+    if len(text) > MAX_INT_DIGITS:
+        raise ProtocolViolation(f"integer with {len(text)} digits")
+    return int(text)
+
+
+def decode_frame(line: bytes) -> dict[str, Any]:
+    """Parse one reply line into a dict with an integer ``id`` and a string ``status``."""
+    try:
+        obj = json.loads(line, parse_constant=_CONSTANTS.__getitem__, parse_int=_parse_int)
+    except ProtocolViolation:
+        raise
+    except (ValueError, RecursionError, KeyError, MemoryError) as exc:
+        raise ProtocolViolation(f"unreadable reply ({type(exc).__name__})") from None
+    if type(obj) is not dict:
+        raise ProtocolViolation("reply is not a JSON object")
+    if type(obj.get("id")) is not int or type(obj.get("status")) is not str:
+        raise ProtocolViolation("reply without an integer id and a status")
+    return obj
+
+
+def plain_value(value: Any, depth: int = 0) -> Any:
+    """Validate a decoded return value: JSON scalars, lists, and unsupported markers only."""
+    if depth > MAX_DEPTH:
+        raise ProtocolViolation("return value nested too deeply")
+    if value is None or type(value) in (bool, int, float, str):
+        return value
+    if type(value) is list:
+        return [plain_value(v, depth + 1) for v in value]
+    if type(value) is dict and len(value) == 1 and type(value.get("unsupported")) is str:
+        return Unsupported(clean_text(value["unsupported"], 100))
+    raise ProtocolViolation("return value contains a JSON object that is not a marker")
+
+
+def text_field(frame: dict[str, Any], key: str, limit: int = MAX_TEXT) -> str:
+    value = frame.get(key, "")
+    if type(value) is not str:
+        raise ProtocolViolation(f"reply field {key!r} is not a string")
+    return clean_text(value, limit)
+
+
+def int_or_none(frame: dict[str, Any], key: str) -> int | None:
+    value = frame.get(key)
+    if value is None:
+        return None
+    if type(value) is not int:
+        raise ProtocolViolation(f"reply field {key!r} is not an integer")
+    return value
+
+
+def names_field(frame: dict[str, Any], key: str) -> tuple[str, ...]:
+    value = frame.get(key, [])
+    if type(value) is not list or len(value) > 100 or any(type(v) is not str for v in value):
+        raise ProtocolViolation(f"reply field {key!r} is not a list of names")
+    return tuple(clean_text(v, 100) for v in value)
+
+
+def frames_field(frame: dict[str, Any]) -> tuple[LearnerFrame, ...]:
+    value = frame.get("frames", [])
+    if type(value) is not list:
+        raise ProtocolViolation("reply field 'frames' is not a list")
+    out = []
+    for item in value[-MAX_FRAMES:]:
+        if (
+            type(item) is not dict
+            or type(item.get("line")) is not int
+            or type(item.get("text")) is not str
+            or type(item.get("function")) is not str
+        ):
+            raise ProtocolViolation("malformed traceback frame")
+        out.append(
+            LearnerFrame(item["line"], clean_text(item["text"], 200), clean_text(item["function"], 100))
+        )
+    return tuple(out)

@@ -1,0 +1,684 @@
+"""The grader's side of the sandbox: start a worker, load learner code, call it, kill it.
+
+Typical use::
+
+    with Worker.spawn() as worker:          # starts the worker (it imports numpy meanwhile)
+        loaded = worker.load(source, "observation_model.py", "observation_model",
+                             params=["xr", "yr", "thr", "xj", "yj"])
+        if loaded.status == "ok":
+            result = worker.call([0.0, 0.0, 0.0, 3.0, 4.0])   # CallResult(status="ok", ...)
+
+:meth:`Worker.spawn` returns at once; the worker imports numpy in the background, so a caller can
+start it early (e.g. before its own imports, or keep one ready for the next check) and
+:meth:`Worker.load` waits for it. A worker runs one submission; after ``timeout``, ``crashed``
+or ``protocol_error`` it is dead and every later request returns the same status.
+
+The worker never returns Python objects: every reply is one size-limited line of JSON, decoded
+and re-validated here (see :mod:`slamcourse.sandbox.protocol`). A ``Worker`` is not thread-safe.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import select
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+import weakref
+from collections.abc import Sequence
+from dataclasses import dataclass
+from types import TracebackType
+from typing import Any, Literal
+
+from slamcourse.errors import GraderError, SandboxError
+from slamcourse.sandbox.isolation import (
+    SANDBOX_WORKER_PATH,
+    WORKER_SCRIPT,
+    IsolationReport,
+    Limits,
+    WorkerCgroups,
+    bwrap_command,
+    probe_isolation,
+    worker_env,
+)
+from slamcourse.sandbox.protocol import (
+    LearnerFrame,
+    ProtocolViolation,
+    clean_text,
+    decode_frame,
+    encode_request,
+    frames_field,
+    int_or_none,
+    names_field,
+    plain_value,
+    text_field,
+)
+
+LoadStatus = Literal[
+    "ok",
+    "syntax_error",
+    "import_error",
+    "missing_function",
+    "not_callable",
+    "signature",
+    "timeout",
+    "crashed",
+    "protocol_error",
+]
+CallStatus = Literal["ok", "raised", "timeout", "crashed", "protocol_error"]
+_FATAL = ("timeout", "crashed", "protocol_error")
+_POLL = 0.05  # seconds between checks that the worker is still alive while waiting
+_LOAD_STATUSES = frozenset(
+    {"ok", "syntax_error", "import_error", "missing_function", "not_callable", "signature"}
+)
+
+
+@dataclass(frozen=True)
+class LoadResult:
+    """Outcome of loading the learner's file.
+
+    - ``ok``: the function exists and accepts the expected number of positional arguments;
+    - ``syntax_error``: ``line`` and ``message``;
+    - ``import_error``: the file raised while it ran; ``message`` and learner-only ``frames``;
+    - ``missing_function``: ``found`` lists the functions the file does define;
+    - ``not_callable``: the name exists but is not callable (``found`` holds its type);
+    - ``signature``: ``expected`` parameters versus ``found`` (names may differ, counts may not);
+    - ``timeout`` / ``crashed`` / ``protocol_error``: the worker is dead; see ``message``.
+    """
+
+    status: LoadStatus
+    message: str = ""
+    line: int | None = None
+    frames: tuple[LearnerFrame, ...] = ()
+    expected: tuple[str, ...] = ()
+    found: tuple[str, ...] = ()
+    stdout: str = ""
+    stderr: str = ""
+    exit_code: int | None = None
+
+    @property
+    def ok(self) -> bool:
+        return self.status == "ok"
+
+
+@dataclass(frozen=True)
+class CallResult:
+    """Outcome of one call.
+
+    - ``ok``: ``value`` is plain data (None, bool, int, float (maybe NaN/inf), str, lists,
+      :class:`~slamcourse.sandbox.protocol.Unsupported` markers); tuples arrive as lists;
+    - ``raised``: ``error`` is ``"TypeName: message"``, ``frames`` the learner's own frames;
+    - ``timeout`` / ``crashed`` / ``protocol_error``: ``error`` says what happened.
+
+    ``stdout`` and ``stderr`` hold what the learner printed during the call (cleaned, capped).
+    """
+
+    status: CallStatus
+    value: Any = None
+    error: str = ""
+    frames: tuple[LearnerFrame, ...] = ()
+    stdout: str = ""
+    stderr: str = ""
+    seconds: float = 0.0
+    exit_code: int | None = None
+
+    @property
+    def ok(self) -> bool:
+        return self.status == "ok"
+
+
+@dataclass
+class _Outcome:
+    """What one request produced: a frame, or a fatal status with a message."""
+
+    status: str  # "frame" or one of _FATAL
+    frame: dict[str, Any] | None = None
+    message: str = ""
+    stdout: str = ""
+    stderr: str = ""
+    seconds: float = 0.0
+    exit_code: int | None = None
+
+
+class _Capture:
+    """Keeps the first ``limit`` bytes a stream produced during one request."""
+
+    def __init__(self, limit: int) -> None:
+        self.limit = limit
+        self.data = bytearray()
+        self.dropped = 0
+
+    def add(self, chunk: bytes) -> None:
+        room = self.limit - len(self.data)
+        if room > 0:
+            self.data += chunk[:room]
+        self.dropped += max(0, len(chunk) - max(room, 0))
+
+    def text(self) -> str:
+        text = clean_text(bytes(self.data))
+        if self.dropped:
+            text += f"\n[… {self.dropped} more bytes of output discarded]"
+        return text
+
+
+class _Resources:
+    """Everything that must be released when a worker goes away (also via weakref.finalize)."""
+
+    def __init__(self) -> None:
+        self.proc: subprocess.Popen[bytes] | None = None
+        self.fds: list[int] = []
+        self.cgroups: WorkerCgroups | None = None
+        self.tmpdir: str | None = None
+        self.closed = False
+
+    def kill(self) -> None:
+        """SIGKILL the worker's process group, its cgroups (daemons too) and reap it."""
+        proc = self.proc
+        if proc is not None and proc.returncode is None:
+            with contextlib.suppress(OSError):
+                os.killpg(proc.pid, signal.SIGKILL)
+        if self.cgroups is not None:
+            self.cgroups.kill()
+        if proc is not None:
+            with contextlib.suppress(OSError):
+                proc.kill()
+            try:
+                proc.wait(timeout=10)
+            except subprocess.TimeoutExpired:  # pragma: no cover - a process SIGKILL cannot stop
+                pass
+
+    def close(self) -> None:
+        if self.closed:
+            return
+        self.closed = True
+        try:
+            self.kill()
+        finally:
+            for fd in self.fds:
+                with contextlib.suppress(OSError):
+                    os.close(fd)
+            self.fds = []
+            if self.proc is not None:
+                for stream in (self.proc.stdout, self.proc.stderr):
+                    if stream is not None:
+                        with contextlib.suppress(OSError):
+                            stream.close()
+            if self.cgroups is not None:
+                self.cgroups.close_fds()
+                self.cgroups.remove(wait=2.0)
+            if self.tmpdir is not None:
+                shutil.rmtree(self.tmpdir, ignore_errors=True)
+
+
+class Worker:
+    """One sandboxed interpreter running one learner's file. Use as a context manager."""
+
+    def __init__(self, *, limits: Limits, isolation: IsolationReport) -> None:
+        """Use :meth:`spawn`."""
+        self._limits = limits
+        self._isolation = isolation
+        self._res = _Resources()
+        self._finalizer = weakref.finalize(self, self._res.close)
+        self._next_id = 0
+        self._ready = False
+        self._loaded: LoadResult | None = None
+        self._dead: tuple[str, str, int | None] | None = None  # status, message, exit code
+        self._budget = limits.total_seconds
+        self._buffer = bytearray()
+        self._req_w = -1
+        self._resp_r = -1
+        self._out_r = -1
+        self._err_r = -1
+        self.startup_seconds: float | None = None
+        """Seconds from :meth:`spawn` until the worker reported ready (None before)."""
+        self._spawned_at = 0.0
+
+    # -- start ----------------------------------------------------------------------------------
+
+    @classmethod
+    def spawn(
+        cls,
+        *,
+        limits: Limits | None = None,
+        require_isolation: bool = False,
+        force: str | None = None,
+    ) -> Worker:
+        """Start a worker now and return at once (it imports numpy in the background).
+
+        ``require_isolation=True`` (or ``force="namespaces"``) raises :class:`SandboxError` when
+        namespaces are unavailable. ``force`` overrides ``SLAMCOURSE_SANDBOX`` (see
+        :func:`~slamcourse.sandbox.isolation.probe_isolation`).
+        """
+        limits = limits if limits is not None else Limits()
+        report = probe_isolation(force)
+        wanted = force or os.environ.get("SLAMCOURSE_SANDBOX", "auto")
+        if (require_isolation or wanted == "namespaces") and report.level != "namespaces":
+            raise SandboxError(
+                f"refusing to run learner code without namespace isolation: {report.reason}"
+            )
+        worker = cls(limits=limits, isolation=report)
+        worker._start()
+        return worker
+
+    def _start(self) -> None:
+        res, limits = self._res, self._limits
+        req_r, req_w = os.pipe()
+        resp_r, resp_w = os.pipe()
+        res.fds += [req_w, resp_r]
+        self._req_w, self._resp_r = req_w, resp_r
+        try:
+            if self._isolation.cgroups is not None:
+                res.cgroups = WorkerCgroups.create(self._isolation.cgroups, limits)
+            cg_fds = res.cgroups.fds if res.cgroups is not None else []
+            worker_args = [
+                f"req={req_r}",
+                f"resp={resp_w}",
+                f"as={limits.memory_bytes}",
+                f"cpu={limits.cpu_seconds}",
+                f"fsize={limits.file_bytes}",
+                f"nofile={limits.open_files}",
+                f"nproc={limits.processes}",
+                f"frame={limits.frame_bytes}",
+                "cg=" + ",".join(str(fd) for fd in cg_fds),
+            ]
+            python = os.path.abspath(sys.executable)
+            if self._isolation.level == "namespaces":
+                assert self._isolation.bwrap is not None
+                program = [python, "-I", "-B", SANDBOX_WORKER_PATH, *worker_args]
+                cmd = bwrap_command(self._isolation.bwrap, limits, program)
+                env, cwd = {"PATH": "/usr/bin:/bin"}, "/"
+            else:
+                res.tmpdir = tempfile.mkdtemp(prefix="slamcourse-worker-")
+                cmd = [python, "-I", "-B", str(WORKER_SCRIPT), *worker_args]
+                env, cwd = worker_env(res.tmpdir), res.tmpdir
+            self._spawned_at = time.monotonic()
+            res.proc = subprocess.Popen(
+                cmd,
+                stdin=subprocess.DEVNULL,
+                stdout=subprocess.PIPE,
+                stderr=subprocess.PIPE,
+                pass_fds=(req_r, resp_w, *cg_fds),
+                start_new_session=True,
+                env=env,
+                cwd=cwd,
+            )
+        except OSError as exc:
+            self._res.close()
+            raise SandboxError(f"cannot start the sandbox worker: {exc}") from exc
+        finally:
+            os.close(req_r)
+            os.close(resp_w)
+            if res.cgroups is not None:
+                res.cgroups.close_fds()
+        assert res.proc.stdout is not None and res.proc.stderr is not None
+        self._out_r = res.proc.stdout.fileno()
+        self._err_r = res.proc.stderr.fileno()
+        for fd in (self._resp_r, self._out_r, self._err_r, self._req_w):
+            os.set_blocking(fd, False)
+
+    # -- public ---------------------------------------------------------------------------------
+
+    @property
+    def isolation(self) -> IsolationReport:
+        return self._isolation
+
+    @property
+    def limits(self) -> Limits:
+        return self._limits
+
+    @property
+    def alive(self) -> bool:
+        return self._dead is None and not self._res.closed
+
+    def load(
+        self,
+        source: str,
+        filename: str,
+        function: str,
+        params: Sequence[str] | None = None,
+    ) -> LoadResult:
+        """Send the learner's source text; it is compiled as ``filename`` and run as a module.
+
+        Raises :class:`SandboxError` if the worker cannot start at all (before any learner code
+        ran) and :class:`GraderError` if called twice.
+        """
+        if self._loaded is not None:
+            raise GraderError("Worker.load() called twice; use one worker per submission")
+        if self._dead is not None:
+            return self._remember(self._dead_load())
+        self._await_ready()
+        if self._dead is not None:
+            return self._remember(self._dead_load())
+        request = {
+            "op": "load",
+            "source": source,
+            "filename": filename,
+            "function": function,
+            "params": list(params) if params is not None else None,
+        }
+        out = self._request(request)
+        if out.status != "frame":
+            return self._remember(
+                LoadResult(
+                    out.status,  # type: ignore[arg-type]
+                    message=out.message,
+                    stdout=out.stdout,
+                    stderr=out.stderr,
+                    exit_code=out.exit_code,
+                )
+            )
+        assert out.frame is not None
+        try:
+            result = self._load_result(out.frame, out)
+        except ProtocolViolation as exc:
+            self._fail("protocol_error", f"the worker broke the protocol: {exc}")
+            return self._remember(self._dead_load(out))
+        return self._remember(result)
+
+    def call(self, args: Sequence[Any]) -> CallResult:
+        """Call the loaded function with ``args`` (plain data; tuples, dicts and numpy arrays
+        arrive as such). Raises :class:`GraderError` if there is no loaded function."""
+        if self._dead is not None:
+            status, message, code = self._dead
+            return CallResult(status, error=f"worker already stopped: {message}",  # type: ignore[arg-type]
+                              exit_code=code)
+        if self._loaded is None or not self._loaded.ok:
+            raise GraderError("Worker.call() needs a successful Worker.load() first")
+        out = self._request({"op": "call", "args": list(args)})
+        if out.status != "frame":
+            return CallResult(
+                out.status,  # type: ignore[arg-type]
+                error=out.message,
+                stdout=out.stdout,
+                stderr=out.stderr,
+                seconds=out.seconds,
+                exit_code=out.exit_code,
+            )
+        assert out.frame is not None
+        try:
+            return self._call_result(out.frame, out)
+        except ProtocolViolation as exc:
+            self._fail("protocol_error", f"the worker broke the protocol: {exc}")
+            return CallResult("protocol_error", error=self._dead[1] if self._dead else "",
+                              stdout=out.stdout, stderr=out.stderr, seconds=out.seconds)
+
+    def close(self) -> None:
+        """Kill the worker and everything it started; release pipes, cgroups and temp files."""
+        if self._dead is None:
+            self._dead = ("crashed", "the worker was closed", None)
+        self._finalizer()
+
+    def __enter__(self) -> Worker:
+        return self
+
+    def __exit__(
+        self,
+        exc_type: type[BaseException] | None,
+        exc: BaseException | None,
+        tb: TracebackType | None,
+    ) -> None:
+        self.close()
+
+    # -- replies --------------------------------------------------------------------------------
+
+    def _remember(self, result: LoadResult) -> LoadResult:
+        self._loaded = result
+        return result
+
+    def _dead_load(self, out: _Outcome | None = None) -> LoadResult:
+        assert self._dead is not None
+        status, message, code = self._dead
+        return LoadResult(
+            status,  # type: ignore[arg-type]
+            message=message,
+            exit_code=code,
+            stdout=out.stdout if out else "",
+            stderr=out.stderr if out else "",
+        )
+
+    def _load_result(self, frame: dict[str, Any], out: _Outcome) -> LoadResult:
+        status = frame["status"]
+        if status not in _LOAD_STATUSES:
+            raise ProtocolViolation(f"unexpected load status {status!r}")
+        return LoadResult(
+            status,
+            message=text_field(frame, "message"),
+            line=int_or_none(frame, "line"),
+            frames=frames_field(frame),
+            expected=names_field(frame, "expected"),
+            found=names_field(frame, "found"),
+            stdout=out.stdout,
+            stderr=out.stderr,
+        )
+
+    def _call_result(self, frame: dict[str, Any], out: _Outcome) -> CallResult:
+        status = frame["status"]
+        common: dict[str, Any] = {"stdout": out.stdout, "stderr": out.stderr,
+                                  "seconds": out.seconds}
+        if status == "ok":
+            if "value" not in frame:
+                raise ProtocolViolation("ok reply without a value")
+            return CallResult("ok", value=plain_value(frame["value"]), **common)
+        if status == "raised":
+            return CallResult("raised", error=text_field(frame, "error"),
+                              frames=frames_field(frame), **common)
+        if status == "oversize":
+            size = int_or_none(frame, "size")
+            what = f"{size} bytes" if size else "too many values"
+            return CallResult(
+                "protocol_error",
+                error=f"the return value is too large to check ({what}; the limit is "
+                f"{self._limits.frame_bytes} bytes of JSON)",
+                **common,
+            )
+        raise ProtocolViolation(f"unexpected call status {status!r}")
+
+    # -- transport ------------------------------------------------------------------------------
+
+    def _fail(self, status: str, message: str, exit_code: int | None = None) -> None:
+        if self._dead is None:
+            self._dead = (status, message, exit_code)
+        self._res.kill()
+
+    def _await_ready(self) -> None:
+        if self._ready:
+            return
+        out = self._exchange(None, 0, self._limits.start_seconds, starting=True)
+        frame = out.frame
+        if out.status != "frame" or frame is None or frame.get("status") != "ready":
+            stderr = out.stderr.strip()
+            self.close()
+            detail = f": {stderr[-500:]}" if stderr else ""
+            raise SandboxError(f"the sandbox worker did not start ({out.message}){detail}")
+        expected = len(self._res.cgroups.dirs) if self._res.cgroups is not None else 0
+        if frame.get("cgroups") != expected:
+            self.close()
+            raise SandboxError("the sandbox worker could not join its cgroups")
+        self._ready = True
+        self.startup_seconds = time.monotonic() - self._spawned_at
+
+    def _request(self, request: dict[str, Any]) -> _Outcome:
+        self._next_id += 1
+        payload = encode_request({"id": self._next_id, **request})
+        out = self._exchange(payload, self._next_id, self._limits.call_seconds)
+        if out.status in _FATAL:
+            self._fail(out.status, out.message, out.exit_code)
+        return out
+
+    def _exchange(
+        self, payload: bytes | None, request_id: int, seconds: float, *, starting: bool = False
+    ) -> _Outcome:
+        """Send ``payload`` (None: just wait) and wait for the frame with ``request_id``."""
+        limits = self._limits
+        start = time.monotonic()
+        per_request = start + seconds
+        overall = start + self._budget
+        deadline = min(per_request, overall)
+        out_cap, err_cap = _Capture(limits.output_bytes), _Capture(limits.output_bytes)
+        proc = self._res.proc
+        assert proc is not None
+
+        def finish(status: str, message: str = "", frame: dict[str, Any] | None = None,
+                   exit_code: int | None = None) -> _Outcome:
+            self._drain(out_cap, err_cap)
+            elapsed = time.monotonic() - start
+            self._budget -= elapsed
+            return _Outcome(status, frame, message, out_cap.text(), err_cap.text(), elapsed,
+                            exit_code)
+
+        def timed_out() -> _Outcome:
+            self._res.kill()
+            if time.monotonic() >= overall and overall < per_request:
+                msg = (f"time limit exceeded: this submission used its total of "
+                       f"{limits.total_seconds:g} s")
+            elif starting:
+                msg = f"the worker did not start within {seconds:g} s"
+            else:
+                msg = f"your code did not finish within {seconds:g} s"
+            return finish("timeout", msg)
+
+        def crashed() -> _Outcome:
+            with contextlib.suppress(subprocess.TimeoutExpired):
+                proc.wait(timeout=1.0)  # let it finish exiting, to report its real status
+            self._res.kill()
+            code = proc.returncode
+            return finish("crashed", _describe_exit(code), exit_code=code)
+
+        if payload is not None:
+            if not self._buffer and _readable(self._resp_r):
+                try:
+                    chunk = os.read(self._resp_r, 1 << 16)
+                except BlockingIOError:
+                    chunk = b"?"
+                if not chunk:
+                    return crashed()
+                self._buffer += chunk
+            if self._buffer:
+                self._res.kill()
+                return finish("protocol_error", "the worker sent a reply nobody asked for")
+            view = memoryview(payload)
+            while view:
+                now = time.monotonic()
+                if now >= deadline:
+                    return timed_out()
+                try:
+                    _r, writable, _x = select.select([], [self._req_w], [], min(deadline - now, _POLL))
+                except InterruptedError:  # pragma: no cover
+                    continue
+                if not writable:
+                    if proc.poll() is not None:
+                        return crashed()
+                    continue
+                try:
+                    view = view[os.write(self._req_w, view):]
+                except BlockingIOError:
+                    continue
+                except BrokenPipeError:
+                    return crashed()
+
+        while True:
+            newline = self._buffer.find(b"\n")
+            if newline >= 0:
+                line = bytes(self._buffer[:newline])
+                del self._buffer[: newline + 1]
+                if len(line) > limits.frame_bytes:
+                    break  # oversize, reported below
+                if self._buffer:
+                    self._res.kill()
+                    return finish("protocol_error", "the worker sent more than one reply")
+                try:
+                    frame = decode_frame(line)
+                except ProtocolViolation as exc:
+                    self._res.kill()
+                    return finish("protocol_error", f"the worker broke the protocol: {exc}")
+                if frame["id"] != request_id:
+                    self._res.kill()
+                    return finish(
+                        "protocol_error",
+                        f"the worker answered request {frame['id']} instead of {request_id}",
+                    )
+                return finish("frame", frame=frame)
+            if len(self._buffer) > limits.frame_bytes:
+                break
+            now = time.monotonic()
+            if now >= deadline:
+                return timed_out()
+            fds = [self._resp_r, self._out_r, self._err_r]
+            try:
+                readable, _w, _x = select.select(fds, [], [], min(deadline - now, _POLL))
+            except InterruptedError:  # pragma: no cover
+                continue
+            if self._out_r in readable:
+                _read_into(self._out_r, out_cap)
+            if self._err_r in readable:
+                _read_into(self._err_r, err_cap)
+            if self._resp_r in readable:
+                try:
+                    chunk = os.read(self._resp_r, 1 << 16)
+                except BlockingIOError:
+                    continue
+                if not chunk:
+                    return crashed()
+                self._buffer += chunk
+                continue
+            if not readable and proc.poll() is not None and not _readable(self._resp_r):
+                return crashed()
+
+        self._res.kill()
+        return finish(
+            "protocol_error",
+            f"the reply is larger than the {limits.frame_bytes}-byte frame limit",
+        )
+
+    def _drain(self, out_cap: _Capture, err_cap: _Capture) -> None:
+        """Collect the output that is already in the pipes (bounded)."""
+        for fd, cap in ((self._out_r, out_cap), (self._err_r, err_cap)):
+            for _ in range(64):
+                if not _read_into(fd, cap):
+                    break
+
+
+def _readable(fd: int) -> bool:
+    try:
+        readable, _w, _x = select.select([fd], [], [], 0)
+    except (OSError, ValueError):
+        return False
+    return bool(readable)
+
+
+def _read_into(fd: int, cap: _Capture) -> bool:
+    """Read one chunk from ``fd`` into ``cap``; False when nothing (more) is available."""
+    try:
+        chunk = os.read(fd, 1 << 16)
+    except (BlockingIOError, OSError):
+        return False
+    if not chunk:
+        return False
+    cap.add(chunk)
+    return True
+
+
+def _describe_exit(code: int | None) -> str:
+    """A sentence about how the worker ended (bwrap reports a signal as 128 + number)."""
+    if code is None:
+        return "the process running your code stopped responding"
+    signum = -code if code < 0 else code - 128 if code > 128 else 0
+    if signum:
+        try:
+            name = signal.Signals(signum).name
+        except ValueError:
+            name = f"signal {signum}"
+        hint = {
+            "SIGKILL": " (a resource limit such as CPU time or memory, or it was killed)",
+            "SIGXCPU": " (CPU time limit)",
+            "SIGSEGV": " (for example a stack overflow from very deep recursion)",
+        }.get(name, "")
+        return f"the process running your code was killed by {name}{hint}"
+    return (
+        f"the process running your code exited (status {code}) before answering; "
+        "does your file call sys.exit() or os._exit()?"
+    )

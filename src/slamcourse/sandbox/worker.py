@@ -1,0 +1,367 @@
+"""The sandbox worker: the only program that ever runs a learner's code.
+
+This file is executed as a script by :mod:`slamcourse.sandbox.runner`, never imported by the
+grader. It uses the standard library and (optionally) numpy only: it must not import slamcourse,
+hypothesis or anything from the course, because under namespace isolation none of those exist in
+its file system, and because everything in this process is under the learner's control once
+their code has run.
+
+Invocation (all values are decimal integers)::
+
+    python -I -B worker.py req=FD resp=FD as=BYTES cpu=SECONDS fsize=BYTES nofile=N nproc=N \
+        frame=BYTES [cg=FD,FD,...]
+
+Order of events:
+
+1. join the cgroups whose ``cgroup.procs`` files the parent opened for us (``cg=``), close those
+   descriptors, then set every resource limit with soft = hard so nothing can raise them again;
+2. import numpy (if installed) and send a ``ready`` frame;
+3. answer requests read from ``req`` (one JSON object per line) with one JSON line each on
+   ``resp``: ``load`` (source text, file name, function name, expected parameters) and ``call``
+   (arguments). End of file on ``req`` means "exit now".
+
+Return values are converted to plain JSON data here, with exact type checks only (``type(x) is
+float``), so no method of a learner object is called while encoding; anything else becomes an
+``{"unsupported": "<type name>"}`` marker. Exceptions become text here, so no learner object ever
+crosses the pipe. The parent re-validates everything it receives: this encoding is a courtesy,
+not a defence.
+"""
+
+from __future__ import annotations
+
+import os
+import resource
+import sys
+
+
+def _parse_argv(argv: list[str]) -> dict[str, str]:
+    out: dict[str, str] = {}
+    for token in argv:
+        key, _, value = token.partition("=")
+        out[key] = value
+    return out
+
+
+def _contain(cfg: dict[str, str]) -> int:
+    """Join the parent's cgroups, then set the resource limits. Returns the cgroups joined."""
+    joined = 0
+    for text in filter(None, cfg.get("cg", "").split(",")):
+        fd = int(text)
+        try:
+            os.write(fd, b"0\n")  # "0" = the writing process; its children inherit the cgroup
+            joined += 1
+        except OSError:
+            pass
+        finally:
+            os.close(fd)
+    limits = (
+        (resource.RLIMIT_CORE, 0),
+        (resource.RLIMIT_AS, int(cfg["as"])),
+        (resource.RLIMIT_CPU, int(cfg["cpu"])),
+        (resource.RLIMIT_FSIZE, int(cfg["fsize"])),
+        (resource.RLIMIT_NOFILE, int(cfg["nofile"])),
+        (resource.RLIMIT_NPROC, int(cfg["nproc"])),
+    )
+    for which, wanted in limits:
+        _soft, hard = resource.getrlimit(which)
+        value = wanted if hard == resource.RLIM_INFINITY else min(wanted, hard)
+        resource.setrlimit(which, (value, value))
+    return joined
+
+
+# Step 1 runs before anything else is imported.
+_CFG = _parse_argv(sys.argv[1:])
+_JOINED = _contain(_CFG)
+
+import json  # noqa: E402
+import types  # noqa: E402
+from typing import Any  # noqa: E402
+
+try:
+    import numpy as _np
+except Exception:  # numpy missing or broken: learners get an ImportError of their own
+    _np = None  # type: ignore[assignment]
+
+# Keep private references: learner code may monkeypatch the public names.
+_write = os.write
+_dumps = json.dumps
+_loads = json.loads
+_FunctionType = types.FunctionType
+_ModuleType = types.ModuleType
+_type_name_getter = type.__dict__["__name__"].__get__
+_str = str
+_len = len
+_isinstance = isinstance
+
+MAX_DEPTH = 32  # nesting of lists/tuples in a return value
+MAX_NODES = 600_000  # values in one return value; more cannot fit in a 1 MiB frame anyway
+MAX_STR = 10_000  # characters of a returned string
+MAX_INT_BITS = 10_000  # bigger ints are not sent (JSON ints over 4300 digits are refused)
+MAX_ERROR = 2_000  # characters of an exception's text
+MAX_FRAMES = 20  # learner traceback frames kept (the innermost ones)
+
+if _np is not None:
+    _NDARRAY: type | None = _np.ndarray
+    _NP_SCALARS: frozenset[type] = frozenset(
+        {
+            _np.bool_,
+            _np.int8,
+            _np.int16,
+            _np.int32,
+            _np.int64,
+            _np.uint8,
+            _np.uint16,
+            _np.uint32,
+            _np.uint64,
+            _np.float16,
+            _np.float32,
+            _np.float64,
+        }
+    )
+    _ARRAY_FROM = _np.array
+else:
+    _NDARRAY = None
+    _NP_SCALARS = frozenset()
+
+
+class _Oversize(Exception):
+    """The return value is too large to send."""
+
+
+def _type_name(t: type) -> str:
+    """The class name read from the type slot itself (a metaclass property cannot intervene)."""
+    try:
+        name = _type_name_getter(t, type)
+    except BaseException:
+        name = "?"
+    return _str(name)[:100] if type(name) is str else "?"
+
+
+def encode(value: Any) -> Any:
+    """Turn a learner's return value into plain JSON data without calling its methods."""
+    budget = [MAX_NODES]
+    return _encode(value, 0, budget)
+
+
+def _encode(x: Any, depth: int, budget: list[int]) -> Any:
+    budget[0] -= 1
+    if budget[0] < 0:
+        raise _Oversize
+    t = type(x)
+    if x is None or t is bool or t is float:
+        return x
+    if t is int:
+        if x.bit_length() > MAX_INT_BITS:
+            return {"unsupported": "int (too large)"}
+        return x
+    if t is str:
+        return x if _len(x) <= MAX_STR else {"unsupported": "str (too long)"}
+    if t is list or t is tuple:
+        if depth >= MAX_DEPTH:
+            return {"unsupported": f"{t.__name__} (nested too deeply)"}
+        if _len(x) > budget[0]:
+            raise _Oversize
+        return [_encode(item, depth + 1, budget) for item in x]
+    if t in _NP_SCALARS:
+        return x.item()
+    if t is _NDARRAY:
+        kind = x.dtype.kind
+        if kind not in "biuf" or x.dtype.itemsize > 8 or x.dtype.fields is not None:
+            return {"unsupported": f"ndarray[{x.dtype.name}]"}
+        if x.size > budget[0]:
+            raise _Oversize
+        budget[0] -= x.size
+        if x.ndim > MAX_DEPTH - depth:
+            return {"unsupported": "ndarray (too many dimensions)"}
+        return x.tolist()
+    return {"unsupported": _type_name(t)}
+
+
+def decode_arg(obj: dict[str, Any]) -> Any:
+    """``json.loads`` object hook: rebuild the tagged tuples, dicts and arrays the parent sent.
+
+    Inside ``args`` every JSON object is a tag (``{"$tuple": [...]}``, ``{"$dict": [[k, v],
+    ...]}``, ``{"$ndarray": [...], "$dtype": "float64"}``); untagged objects are the request
+    envelope itself.
+    """
+    if "$tuple" in obj:
+        return tuple(obj["$tuple"])
+    if "$dict" in obj:
+        return {k: v for k, v in obj["$dict"]}
+    if "$ndarray" in obj:
+        if _np is None:
+            return None  # the learner's own numpy use fails the same way
+        return _ARRAY_FROM(obj["$ndarray"], dtype=obj["$dtype"])
+    return obj
+
+
+class Session:
+    """The state of one worker: the loaded learner module and the function to call."""
+
+    def __init__(self, resp_fd: int, frame_limit: int) -> None:
+        self.resp_fd = resp_fd
+        self.frame_limit = frame_limit
+        self.filename = "<learner>"
+        self.lines: list[str] = []
+        self.function: Any = None
+
+    # -- output ---------------------------------------------------------------------------------
+
+    def send(self, frame: dict[str, Any]) -> None:
+        _flush_learner_output()
+        data = (_dumps(frame, allow_nan=True, separators=(",", ":")) + "\n").encode()
+        if _len(data) > self.frame_limit:
+            data = (
+                _dumps(
+                    {"id": frame.get("id"), "status": "oversize", "size": _len(data)},
+                    separators=(",", ":"),
+                )
+                + "\n"
+            ).encode()
+        view = memoryview(data)
+        while view:
+            written = _write(self.resp_fd, view)
+            view = view[written:]
+
+    # -- errors ---------------------------------------------------------------------------------
+
+    def describe(self, exc: BaseException) -> dict[str, Any]:
+        name = _type_name(type(exc))
+        try:
+            message = _str(exc)
+        except BaseException:
+            message = "<exception text unavailable>"
+        if type(message) is not str:
+            message = "<exception text unavailable>"
+        text = f"{name}: {message}" if message else name
+        return {"error": text[:MAX_ERROR], "frames": self.frames(exc.__traceback__)}
+
+    def frames(self, tb: Any) -> list[dict[str, Any]]:
+        found: list[tuple[int, str]] = []
+        while tb is not None:
+            code = tb.tb_frame.f_code
+            if code.co_filename == self.filename:
+                found.append((tb.tb_lineno, _str(code.co_name)))
+                if _len(found) > MAX_FRAMES:
+                    del found[0]
+            tb = tb.tb_next
+        out = []
+        for line, function in found:
+            text = self.lines[line - 1].strip()[:200] if 0 < line <= _len(self.lines) else ""
+            out.append({"line": line, "text": text, "function": function[:100]})
+        return out
+
+    # -- requests -------------------------------------------------------------------------------
+
+    def load(self, req: dict[str, Any]) -> dict[str, Any]:
+        source = req["source"]
+        self.filename = req["filename"]
+        self.lines = source.splitlines()
+        try:
+            code = compile(source, self.filename, "exec", dont_inherit=True)
+        except SyntaxError as exc:
+            message = _str(exc.msg) if exc.msg else "invalid syntax"
+            return {"status": "syntax_error", "line": exc.lineno, "message": message[:MAX_ERROR]}
+        except (ValueError, RecursionError, MemoryError, OverflowError) as exc:
+            return {"status": "syntax_error", "line": None, "message": _str(exc)[:MAX_ERROR]}
+        stem = self.filename.rsplit("/", 1)[-1].removesuffix(".py")
+        name = stem if stem.isidentifier() and stem not in sys.modules else "learner_submission"
+        module = _ModuleType(name)
+        module.__file__ = self.filename
+        sys.modules[name] = module
+        try:
+            exec(code, module.__dict__)
+        except (SystemExit, KeyboardInterrupt):
+            raise
+        except BaseException as exc:
+            info = self.describe(exc)
+            return {"status": "import_error", "message": info["error"], "frames": info["frames"]}
+        namespace = module.__dict__
+        function = namespace.get(req["function"]) if type(namespace) is dict else None
+        if function is None:
+            defined = sorted(
+                k for k, v in namespace.items() if type(k) is str and type(v) is _FunctionType
+            )[:20]
+            return {"status": "missing_function", "found": defined}
+        if not callable(function):
+            return {"status": "not_callable", "found": [_type_name(type(function))]}
+        params = req.get("params")
+        if params is not None:
+            problem = _arity_problem(function, _len(params))
+            if problem is not None:
+                return {"status": "signature", "expected": params, "found": problem}
+        self.function = function
+        return {"status": "ok"}
+
+    def call(self, req: dict[str, Any]) -> dict[str, Any]:
+        args = req["args"]
+        try:
+            result = self.function(*args)
+        except (SystemExit, KeyboardInterrupt):
+            raise
+        except BaseException as exc:
+            return {"status": "raised", **self.describe(exc)}
+        try:
+            return {"status": "ok", "value": encode(result)}
+        except (_Oversize, RecursionError, MemoryError):
+            return {"status": "oversize", "size": None}
+
+
+def _arity_problem(function: Any, count: int) -> list[str] | None:
+    """``None`` if ``function`` accepts ``count`` positional arguments, else its parameters."""
+    if type(function) is not _FunctionType:
+        return None  # classes, builtins, partials...: let the call itself decide
+    code = function.__code__
+    flags = code.co_flags
+    n_pos = code.co_argcount
+    names = list(code.co_varnames[: n_pos + code.co_kwonlyargcount])
+    defaults = function.__defaults__ or ()
+    kwdefaults = function.__kwdefaults__ or {}
+    has_varargs = bool(flags & 0x04)
+    if has_varargs:
+        names.insert(n_pos, "*" + code.co_varnames[n_pos + code.co_kwonlyargcount])
+    required_kw = [n for n in code.co_varnames[n_pos : n_pos + code.co_kwonlyargcount]
+                   if n not in kwdefaults]
+    minimum = n_pos - _len(defaults)
+    fits = minimum <= count and (count <= n_pos or has_varargs) and not required_kw
+    return None if fits else [_str(n) for n in names]
+
+
+def _flush_learner_output() -> None:
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            stream.flush()
+        except BaseException:
+            pass
+
+
+def main() -> int:
+    req_fd = int(_CFG["req"])
+    resp_fd = int(_CFG["resp"])
+    session = Session(resp_fd, int(_CFG["frame"]))
+    numpy_version = _np.__version__ if _np is not None else None
+    # Learners get the same imports at every isolation level: the standard library and numpy
+    # (already imported above), nothing else from site-packages.
+    sys.path[:] = [p for p in sys.path if "-packages" not in p]
+    session.send({"id": 0, "status": "ready", "numpy": numpy_version, "cgroups": _JOINED})
+    requests = os.fdopen(req_fd, "rb", buffering=1 << 16)
+    loaded = False
+    while True:
+        line = requests.readline()
+        if not line:
+            return 0
+        req = _loads(line, object_hook=decode_arg)
+        op = req.get("op")
+        if op == "load" and not loaded:
+            loaded = True
+            reply = session.load(req)
+        elif op == "call" and session.function is not None:
+            reply = session.call(req)
+        else:
+            reply = {"status": "bad_request"}
+        reply["id"] = req.get("id")
+        session.send(reply)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
