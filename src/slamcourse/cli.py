@@ -177,15 +177,22 @@ def _pose(out: Out, engine: Engine, exercise_id: str, args: argparse.Namespace) 
     _show_prompt(out, engine, exercise_id, variant, context=not args.no_context)
     for text in engine.hints_shown(exercise_id, variant):
         out.line(out.style("hint: ", "yellow") + text)
-    out.line(out.style(f"Type your answer, or {COMMANDS}", "dim"))
+    code_path = None
+    if engine.exercise(exercise_id).kind == "code":
+        code_path, fresh = engine.code_file(exercise_id)
+        verb = "Starter written to" if fresh else "Your file:"
+        out.line(f"{verb} {out.style(str(code_path), 'bold')}")
+        out.line(out.style(f"Edit it, then press Enter to check it, or {COMMANDS}", "dim"))
+    else:
+        out.line(out.style(f"Type your answer, or {COMMANDS}", "dim"))
     failures = 0
     while True:
-        answer = _ask(out, out.style("answer> ", "bold"))
+        answer = _ask(out, out.style("check> " if code_path else "answer> ", "bold"))
         if answer is None:  # end of input
             out.line()
             return False
         command = answer.strip().lower()
-        if not command:
+        if not command and code_path is None:
             continue
         if command in (":q", ":quit", "quit", "exit"):
             out.line("Progress saved. Run `slamcourse next` to continue.")
@@ -207,7 +214,14 @@ def _pose(out: Out, engine: Engine, exercise_id: str, args: argparse.Namespace) 
             out.line(out.style("Explanation", "bold"))
             out.markdown(engine.explanation(exercise_id, variant))
             return _continue(out)
-        verdict = engine.check(exercise_id, answer, variant)
+        if code_path is not None:
+            if command:
+                out.line(f"Edit {code_path} in your editor; press Enter here to check it.")
+                continue
+            out.line(out.style("checking…", "dim"))
+            verdict = engine.check_code(exercise_id, code_path)
+        else:
+            verdict = engine.check(exercise_id, answer, variant)
         print_verdict(out, verdict)
         if verdict.passed:
             out.line(out.style("Explanation", "bold"))
@@ -225,9 +239,13 @@ def _continue(out: Out) -> bool:
 
 
 def cmd_check(args: argparse.Namespace, out: Out) -> int:
-    if args.answer is None:
-        raise UsageError("give the answer with --answer TEXT (e.g. --answer 0.25)")
     with _engine(args, with_progress=not args.no_record) as engine:
+        if engine.exercise(args.exercise).kind == "code":
+            return _check_code(args, out, engine)
+        if args.file is not None:
+            raise UsageError(f"{args.exercise} is not a code exercise: use --answer TEXT")
+        if args.answer is None:
+            raise UsageError("give the answer with --answer TEXT (e.g. --answer 0.25)")
         variant = _variant(engine, args, args.exercise)
         verdict = engine.check(args.exercise, args.answer, variant, record=not args.no_record)
         if args.json:
@@ -236,6 +254,28 @@ def cmd_check(args: argparse.Namespace, out: Out) -> int:
         else:
             print_verdict(out, verdict)
         return verdict.exit_code
+
+
+def _check_code(args: argparse.Namespace, out: Out, engine: Engine) -> int:
+    from pathlib import Path
+
+    if args.answer is not None:
+        raise UsageError(f"{args.exercise} is a code exercise: grade a file with --file PATH "
+                         "(or leave it out to grade your workspace file)")
+    if args.file is not None:
+        path = Path(args.file)
+    else:
+        path, _ = engine.code_file(args.exercise, create=False)
+        if not path.exists():
+            raise UsageError(f"no file {path} yet: `slamcourse next` (or `goto {args.exercise}` "
+                             "then `next`) writes the starter; or pass --file PATH")
+    verdict = engine.check_code(args.exercise, path, require_isolation=args.require_isolation,
+                                record=not args.no_record)
+    if args.json:
+        out.json({"exercise": args.exercise, "file": str(path), "verdict": verdict.to_dict()})
+    else:
+        print_verdict(out, verdict)
+    return verdict.exit_code
 
 
 def cmd_show(args: argparse.Namespace, out: Out) -> int:
@@ -365,6 +405,54 @@ def cmd_validate(args: argparse.Namespace, out: Out) -> int:
     return 0 if report.ok else 1
 
 
+def cmd_doctor(args: argparse.Namespace, out: Out) -> int:
+    """What this machine offers the grader: isolation level, paths, versions."""
+    import platform
+
+    import numpy
+
+    from slamcourse.course.locate import course_root
+    from slamcourse.progress import default_home
+    from slamcourse.sandbox import probe_isolation
+    from slamcourse.workspace import workspace_dir
+
+    report = probe_isolation()
+    info = {"slamcourse": __version__, "python": platform.python_version(),
+            "numpy": numpy.__version__, "platform": platform.platform(),
+            "isolation": report.level, "isolation_reason": report.reason,
+            "course": str(course_root(args.course)), "home": str(default_home()),
+            "workspace": str(workspace_dir())}
+    if args.json:
+        out.json(info)
+        return 0
+    for key, value in info.items():
+        out.line(f"{key + ':':<18} {value}")
+    if report.level != "namespaces":
+        out.line(out.style("Learner code runs with resource limits only (no namespaces): fine "
+                           "for practice on your own machine; CI grading passes "
+                           "--require-isolation and refuses this.", "yellow"))
+    return 0
+
+
+def cmd_watch(args: argparse.Namespace, out: Out) -> int:
+    """Re-grade a code exercise's file every time it is saved."""
+    from slamcourse.watch import wait_for_change
+
+    with _engine(args) as engine:
+        exercise_id = _target(engine, args.exercise)
+        path, fresh = engine.code_file(exercise_id)
+        out.line(f"Watching {out.style(str(path), 'bold')} ({exercise_id}); Ctrl-C to stop.")
+        while True:
+            verdict = engine.check_code(exercise_id, path)
+            print_verdict(out, verdict)
+            if verdict.passed:
+                out.line(out.style("Explanation", "bold"))
+                out.markdown(engine.explanation(exercise_id, engine.variant(exercise_id)))
+                return 0
+            mechanism = wait_for_change(path, poll=args.poll)
+            out.line(out.style(f"changed ({mechanism}); checking…", "dim"))
+
+
 # ------------------------------------------------------------------------------ parser
 
 
@@ -395,6 +483,10 @@ def build_parser() -> argparse.ArgumentParser:
     p = add("check", cmd_check, "grade one answer (exit 0 passed, 1 not passed, 2 usage)")
     p.add_argument("exercise", metavar="ID")
     p.add_argument("--answer", metavar="TEXT", help="the answer, e.g. 0.25, 7/5, [0.3, -0.09]")
+    p.add_argument("--file", metavar="PATH", help="code exercises: grade this file (default: "
+                   "your workspace file)")
+    p.add_argument("--require-isolation", action="store_true", help="code exercises: refuse to "
+                   "grade without namespace isolation (CI)")
     p.add_argument("--json", action="store_true", help="machine-readable verdict")
     p.add_argument("--no-record", action="store_true", help="do not record the attempt")
     variant_opts(p)
@@ -420,6 +512,11 @@ def build_parser() -> argparse.ArgumentParser:
     p = add("reset", cmd_reset, "reopen one exercise, or all (attempts stay in the log)")
     p.add_argument("exercise", metavar="ID", nargs="?")
     p.add_argument("--yes", action="store_true", help="do not ask before resetting everything")
+    p = add("watch", cmd_watch, "re-grade a code exercise's file on every save")
+    p.add_argument("exercise", metavar="ID", nargs="?")
+    p.add_argument("--poll", action="store_true", help="poll instead of using file events")
+    p = add("doctor", cmd_doctor, "report the sandbox isolation level and where files live")
+    p.add_argument("--json", action="store_true")
     p = add("validate", cmd_validate, "prove a course sound (reference, variants, misconceptions)")
     p.add_argument("path", metavar="COURSE", nargs="?", help="course folder (default: bundled)")
     p.add_argument("--variants", type=int, default=25, metavar="N",

@@ -110,10 +110,42 @@ class Engine:
               record: bool = True) -> Verdict:
         """Grade ``answer``; record the attempt in the learner's progress when there is one."""
         spec = self.exercise(exercise_id)
+        if spec.kind == "code":
+            raise UsageError(f"{exercise_id} is a code exercise: grade a file with "
+                             f"`slamcourse check {exercise_id} --file PATH`")
         verdict = get_kind(spec.kind).check(spec, variant, answer)
         if record and self.progress is not None:
             self.progress.record_attempt(exercise_id, variant.seed, answer, verdict)
         return verdict
+
+    def check_code(self, exercise_id: str, path: Path, *, require_isolation: bool = False,
+                   record: bool = True) -> Verdict:
+        """Grade the learner's file ``path`` for a code exercise (sandboxed)."""
+        import hashlib
+
+        from slamcourse.kinds.code import read_source
+
+        spec = self.exercise(exercise_id)
+        if spec.kind != "code":
+            raise UsageError(f"{exercise_id} is a {spec.kind} exercise: answer it with --answer")
+        source = read_source(path)
+        verdict = get_kind("code").check_source(spec, source, path.name,  # type: ignore[attr-defined]
+                                                require_isolation=require_isolation)
+        if record and self.progress is not None:
+            digest = hashlib.sha256(source.encode("utf-8", "replace")).hexdigest()[:16]
+            self.progress.record_attempt(exercise_id, 0, f"{path} sha256:{digest}", verdict)
+        return verdict
+
+    def code_file(self, exercise_id: str, *, create: bool = True) -> tuple[Path, bool]:
+        """The learner's file of a code exercise, written from the starter when missing."""
+        from slamcourse.workspace import ensure_starter, exercise_file
+
+        spec = self.exercise(exercise_id)
+        if spec.kind != "code":
+            raise UsageError(f"{exercise_id} is not a code exercise")
+        if create:
+            return ensure_starter(spec)
+        return exercise_file(spec), False
 
     def explanation(self, exercise_id: str, variant: Variant) -> str:
         spec = self.exercise(exercise_id)

@@ -42,8 +42,9 @@ BUILD_OMEGA = """
 
 
 def test_floats_and_tuples(make_worker: MakeWorker) -> None:
-    worker, loaded = make_worker(OBSERVATION_MODEL, "observation_model",
-                                 ["xr", "yr", "thr", "xj", "yj"])
+    worker, loaded = make_worker(
+        OBSERVATION_MODEL, "observation_model", ["xr", "yr", "thr", "xj", "yj"]
+    )
     assert loaded.ok, loaded
     result = worker.call([0.0, 0.0, 0.0, 3.0, 4.0])
     assert result.status == "ok"
@@ -77,8 +78,14 @@ def test_numpy_scalars_and_dtypes(make_worker: MakeWorker) -> None:
     )
     assert loaded.ok
     cases = {
-        "f32": 1.5, "i64": 7, "u8": 255, "bool": True, "iarr": [0, 1, 2],
-        "barr": [True, False], "f16arr": [1.0, 1.0], "zero_d": 2.5,
+        "f32": 1.5,
+        "i64": 7,
+        "u8": 255,
+        "bool": True,
+        "iarr": [0, 1, 2],
+        "barr": [True, False],
+        "f16arr": [1.0, 1.0],
+        "zero_d": 2.5,
         "mixed": [0.25, [1, [[1, 2]]]],
     }
     for kind, expected in cases.items():
@@ -98,15 +105,22 @@ def test_arguments_arrive_typed(make_worker: MakeWorker) -> None:
         """
     )
     assert loaded.ok
-    result = worker.call(
-        [1.5, (1, 2), {"k": 3}, np.eye(2, dtype=np.float32), [(0, 1)]]
-    )
-    assert result.value == ["float", "tuple", "dict", "ndarray", "float32", [2, 2], "tuple",
-                            [["k", 3]], [1, 2]]
+    result = worker.call([1.5, (1, 2), {"k": 3}, np.eye(2, dtype=np.float32), [(0, 1)]])
+    assert result.value == [
+        "float",
+        "tuple",
+        "dict",
+        "ndarray",
+        "float32",
+        [2, 2],
+        "tuple",
+        [["k", 3]],
+        [1, 2],
+    ]
 
 
 def test_bad_argument_is_a_grader_error(make_worker: MakeWorker) -> None:
-    worker, loaded = make_worker("def f(x):\n    return x\n")
+    worker, _loaded = make_worker("def f(x):\n    return x\n")
     with pytest.raises(GraderError):
         worker.call([object()])
     assert worker.call([1]).value == 1
@@ -128,8 +142,9 @@ def test_null_byte_is_a_syntax_error(make_worker: MakeWorker) -> None:
 
 
 def test_missing_function_lists_what_exists(make_worker: MakeWorker) -> None:
-    worker, loaded = make_worker("def observation(x):\n    return x\nhelper = 3\n",
-                                 "observation_model")
+    worker, loaded = make_worker(
+        "def observation(x):\n    return x\nhelper = 3\n", "observation_model"
+    )
     assert loaded.status == "missing_function"
     assert loaded.found == ("observation",)
     with pytest.raises(GraderError):
@@ -258,9 +273,15 @@ def test_unsupported_values_are_marked(make_worker: MakeWorker) -> None:
     )
     assert loaded.ok
     names = {
-        "dict": "dict", "gen": "generator", "set": "set", "complex": "complex",
-        "carr": "ndarray[complex128]", "objarr": "ndarray[object]", "sub": "MyFloat",
-        "strarr": "ndarray[str32]", "bytes": "bytes",
+        "dict": "dict",
+        "gen": "generator",
+        "set": "set",
+        "complex": "complex",
+        "carr": "ndarray[complex128]",
+        "objarr": "ndarray[object]",
+        "sub": "MyFloat",
+        "strarr": "ndarray[str32]",
+        "bytes": "bytes",
     }
     for kind, name in names.items():
         result = worker.call([kind])

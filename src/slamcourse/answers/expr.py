@@ -44,7 +44,14 @@ from typing import Any, cast
 
 from slamcourse.errors import AnswerFormatError, GraderError
 
-__all__ = ["CONSTANTS", "FUNCTIONS", "Expression", "compile_expression", "evaluate_number"]
+__all__ = [
+    "CONSTANTS",
+    "FUNCTIONS",
+    "Expression",
+    "compile_expression",
+    "evaluate_number",
+    "preprocess",
+]
 
 MAX_CHARS = 1000
 MAX_NODES = 300

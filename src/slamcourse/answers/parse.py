@@ -33,15 +33,15 @@ IDS_FORM = "choice ids such as 'a', 'a c' or 'a, c'"
 
 _OPENERS = {"(": ")", "[": "]", "{": "}"}
 _CLOSERS = {v: k for k, v in _OPENERS.items()}
-_BINARY_ONLY = ("*", "/", "^", "×", "÷", "·", "⋅", "²", "³")
+_BINARY_ONLY = ("*", "/", "^", "×", "÷", "·", "⋅", "²", "³", "=", "<", ">", "!")
 _SIGNS = ("+", "-")
 
 _DEGREES = re.compile(r"°|(?<![^\W\d_])(?:deg|degs|degree|degrees)(?![^\W\d_])", re.IGNORECASE)
 _NONFINITE = re.compile(r"∞|(?<![^\W\d_])(?:nan|inf|infinity)(?![^\W\d_])", re.IGNORECASE)
 _DECIMAL_COMMA = re.compile(r"[-+]?[0-9]+,[0-9]+")
-_UNIT = re.compile(r"(?P<value>.*[0-9.)])\s*(?P<unit>[^\W\d_][\w/^²³·*.-]*|%)", re.DOTALL)
+_UNIT = re.compile(r"(?P<value>.*[0-9.)])\s*(?P<unit>[^\W\d_][\w/^²³·]*|%)", re.DOTALL)
 _PLAIN_NUMBER = re.compile(r"[-+]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][-+]?[0-9]+)?")
-_EXPONENT = re.compile(r"[eE][-+]?[0-9]*")
+_EXPONENT = re.compile(r"[eE][-+]?[0-9]")
 _KNOWN_UNITS = frozenset(
     {
         *("m", "cm", "mm", "km", "um", "µm", "nm", "meter", "meters", "metre", "metres"),
@@ -195,14 +195,13 @@ def _unit_of(text: str) -> tuple[str, str] | None:
     m = _UNIT.fullmatch(text)
     if m is None:
         return None
-    unit = m.group("unit")
-    if _EXPONENT.fullmatch(unit):
-        return None
+    unit, value = m.group("unit"), m.group("value").strip()
+    if _EXPONENT.match(unit) and value[-1].isdigit():
+        return None  # scientific notation such as 1e5 or 1e308*10, not a unit
     word = re.match(r"[^\W\d_]\w*", unit)
     lead = word.group() if word else unit
     if lead in CONSTANTS or lead in FUNCTIONS or lead[0] in "πτ":
         return None
-    value = m.group("value").strip()
     if lead.lower() in _KNOWN_UNITS or _PLAIN_NUMBER.fullmatch(value):
         return value, unit
     return None

@@ -230,11 +230,10 @@ def text_width(text: str) -> int:
 class _Node:
     """Base of the parse tree; carries whether source whitespace preceded the node."""
 
-    __slots__ = ("sp_any", "sp_raw")
+    __slots__ = ("space",)
 
     def __init__(self) -> None:
-        self.sp_raw = False  # whitespace in the source before it, not eaten by a control word
-        self.sp_any = False  # any whitespace before it in the source
+        self.space = False  # whitespace preceded it in the source
 
 
 class _Sym(_Node):
@@ -345,15 +344,13 @@ class _Amp(_Node):
 
 
 class _Tok:
-    __slots__ = ("end", "is_word", "kind", "sp_any", "sp_raw", "value")
+    __slots__ = ("end", "kind", "space", "value")
 
-    def __init__(self, kind: str, value: str, end: int, sp_raw: bool, sp_any: bool) -> None:
+    def __init__(self, kind: str, value: str, end: int, space: bool) -> None:
         self.kind = kind  # cmd, char, {, }, ^, _, &, nl, eof
         self.value = value
         self.end = end
-        self.sp_raw = sp_raw
-        self.sp_any = sp_any
-        self.is_word = kind == "cmd" and value.isascii() and value.isalpha()
+        self.space = space
 
 
 class _TooDeep(Exception):
@@ -364,7 +361,6 @@ class _Lexer:
     def __init__(self, src: str) -> None:
         self.src = src
         self.pos = 0
-        self.after_word = False
         self._cache: tuple[int, _Tok] | None = None
 
     def peek(self) -> _Tok:
@@ -377,7 +373,6 @@ class _Lexer:
     def next(self) -> _Tok:
         tok = self.peek()
         self.pos = tok.end
-        self.after_word = tok.is_word
         return tok
 
     def _scan(self) -> _Tok:
@@ -386,27 +381,26 @@ class _Lexer:
         while pos < n and src[pos] in " \t\n\r":
             pos += 1
         ws = pos > start
-        raw = ws and not self.after_word
         if pos >= n:
-            return _Tok("eof", "", pos, raw, ws)
+            return _Tok("eof", "", pos, ws)
         c = src[pos]
         if c == "\\":
             if pos + 1 >= n:
-                return _Tok("char", "", pos + 1, raw, ws)
+                return _Tok("char", "", pos + 1, ws)
             d = src[pos + 1]
             if d.isascii() and d.isalpha():
                 end = pos + 1
                 while end < n and src[end].isascii() and src[end].isalpha():
                     end += 1
-                return _Tok("cmd", src[pos + 1 : end], end, raw, ws)
+                return _Tok("cmd", src[pos + 1 : end], end, ws)
             if d == "\\":
-                return _Tok("nl", "", pos + 2, raw, ws)
+                return _Tok("nl", "", pos + 2, ws)
             if d in " \t\n\r":  # control space
-                return _Tok("cmd", " ", pos + 2, raw, ws)
-            return _Tok("cmd", d, pos + 2, raw, ws)
+                return _Tok("cmd", " ", pos + 2, ws)
+            return _Tok("cmd", d, pos + 2, ws)
         if c in "{}^_&":
-            return _Tok(c, c, pos + 1, raw, ws)
-        return _Tok("char", c, pos + 1, raw, ws)
+            return _Tok(c, c, pos + 1, ws)
+        return _Tok("char", c, pos + 1, ws)
 
     def skip_ws(self) -> None:
         while self.pos < len(self.src) and self.src[self.pos] in " \t\n\r":
@@ -418,7 +412,6 @@ class _Lexer:
         src, n = self.src, len(self.src)
         if self.pos >= n:
             return None
-        self.after_word = False
         if src[self.pos] != "{":
             tok = self.next()
             if tok.kind == "cmd":
@@ -461,7 +454,6 @@ class _Lexer:
                 elif ch == "]" and depth <= 0:
                     text = self.src[self.pos + 1 : i]
                     self.pos = i + 1
-                    self.after_word = False
                     return text
                 i += 1
         self.pos = save
@@ -509,12 +501,15 @@ class _Parser:
                 node = _Group(self._group_rest())
             elif kind == "char":
                 node = self._char(tok.value)
+            elif tok.value in ("over", "choose"):  # infix: {a \over b}
+                rest = self.parse_seq(stops)
+                node = _Frac(items, rest) if tok.value == "over" else _Call("C", [items, rest])
+                items = []
             else:
                 node = self._command(tok.value)
             if node is None:
                 continue
-            node.sp_raw = tok.sp_raw
-            node.sp_any = tok.sp_any
+            node.space = tok.space
             items.append(node)
         self.depth -= 1
         return items
@@ -544,9 +539,6 @@ class _Parser:
                 raise _TooDeep
             cmd = self._command(tok.value)
             self.depth -= 1
-            # `[t]_\times R`: the space after a script's bare command separates, like `x_r R`
-            lx.after_word = False
-            lx._cache = None
             return [cmd] if cmd is not None else []
         return []
 
@@ -559,9 +551,9 @@ class _Parser:
         scripts = _Scripts(base)
         if base is not None:
             items.pop()
-            scripts.sp_raw, scripts.sp_any = base.sp_raw, base.sp_any
+            scripts.space = base.space
         else:
-            scripts.sp_raw, scripts.sp_any = tok.sp_raw, tok.sp_any
+            scripts.space = tok.space
         setattr(scripts, which, arg)
         items.append(scripts)
 
@@ -609,7 +601,7 @@ class _Parser:
             if name == "hspace":
                 lx.read_raw_group()
             return _Space(_SPACES[name])
-        if name in ("frac", "dfrac", "tfrac", "cfrac", "over"):
+        if name in ("frac", "dfrac", "tfrac", "cfrac"):
             if name == "cfrac":
                 lx.read_optional()
             return _Frac(self.parse_arg(), self.parse_arg())
@@ -664,7 +656,7 @@ class _Parser:
             return scripts
         if name in ("underbrace", "overbrace", "ensuremath", "boxed", "mathclap", "smash"):
             return _Group(self.parse_arg())
-        if name in ("binom", "dbinom", "tbinom", "choose"):
+        if name in ("binom", "dbinom", "tbinom"):
             return _Call("C", [self.parse_arg(), self.parse_arg()])
         if name == "pmod":
             return _Fenced("(mod ", self.parse_arg(), ")")
@@ -682,7 +674,7 @@ class _Parser:
     def _unknown(self, name: str) -> _Node:
         """Unknown command: its name, with brace arguments as ``name(a, b)``."""
         args: list[list[_Node]] = []
-        while self.lx.peek().kind == "{" and not self.lx.peek().sp_any:
+        while self.lx.peek().kind == "{" and not self.lx.peek().space:
             self.lx.next()
             args.append(self._group_rest())
         if args:
@@ -847,7 +839,7 @@ def _needs_parens(items: list[_Node], strict: bool) -> bool:
             return True
         if cls == TEXT and isinstance(node, _Sym) and " " in node.text.strip():
             return True
-        if i > 0 and node.sp_raw:
+        if i > 0 and node.space and _klass(flat[i - 1]) != PREFIX:
             return True
     return strict and _atom_count(flat) > 1
 
@@ -947,7 +939,7 @@ class _Renderer:
 
     @staticmethod
     def _bin_spaced(node: _Node, nxt: _Node | None) -> bool:
-        return node.sp_any or (nxt is not None and nxt.sp_any)
+        return node.space or (nxt is not None and nxt.space)
 
     def _space_between(
         self, left: _Node, lcls: str, right: _Node, rcls: str, after: _Node | None
@@ -963,14 +955,14 @@ class _Renderer:
         if rcls in (CLOSE, PUNCT) or lcls == OPEN:
             return False
         if lcls == PUNCT:
-            return right.sp_any
+            return right.space
+        if lcls == PREFIX:
+            return False
         if lcls == FUNC:
-            if right.sp_raw:
+            if right.space:
                 return True
             return rcls != OPEN and not isinstance(right, _Fenced)
-        if lcls == BIGOP:
-            return right.sp_any
-        return right.sp_raw
+        return right.space  # ordinary neighbours: as the author spaced them
 
     # ---- nodes
     def node(self, node: _Node, compact: bool, boxes: bool = False) -> str | _Box:

@@ -6,7 +6,8 @@ Frames are single lines of JSON. Requests (parent → worker)::
     {"id": 2, "op": "call", "args": [...]}
 
 Inside ``args`` tuples, dicts and numpy arrays are tagged so that they arrive as such:
-``{"$tuple": [...]}``, ``{"$dict": [[key, value], ...]}``, ``{"$ndarray": [...], "$dtype": "float64"}``.
+``{"$tuple": [...]}``, ``{"$dict": [[key, value], ...]}`` and
+``{"$ndarray": [...], "$dtype": "float64"}``.
 
 Replies (worker → parent) are *untrusted*: :func:`decode_frame` accepts at most one JSON object
 of at most ``frame_bytes`` bytes, refuses huge integers and deep nesting, maps ``NaN`` and
@@ -88,10 +89,12 @@ def encode_arg(value: Any, depth: int = 0) -> Any:
     """Plain data for one argument; raises :class:`GraderError` for anything else."""
     if depth > MAX_DEPTH:
         raise GraderError("argument nested too deeply to send to the sandbox")
-    if value is None or isinstance(value, bool | int | float | str):
-        if isinstance(value, int) and not isinstance(value, bool) and value.bit_length() > 10_000:
+    if value is None:
+        return None
+    if isinstance(value, bool | int | float | str):
+        if isinstance(value, int) and value.bit_length() > 10_000:
             raise GraderError("integer argument too large to send to the sandbox")
-        return value if type(value) in (type(None), bool, int, float, str) else _plain(value)
+        return value if type(value) in (bool, int, float, str) else _plain(value)
     if isinstance(value, np.generic) and value.dtype.kind in "biuf":
         return value.item()
     if isinstance(value, tuple):
@@ -99,8 +102,11 @@ def encode_arg(value: Any, depth: int = 0) -> Any:
     if isinstance(value, list):
         return [encode_arg(v, depth + 1) for v in value]
     if isinstance(value, dict):
-        return {"$dict": [[encode_arg(k, depth + 1), encode_arg(v, depth + 1)]
-                          for k, v in value.items()]}
+        return {
+            "$dict": [
+                [encode_arg(k, depth + 1), encode_arg(v, depth + 1)] for k, v in value.items()
+            ]
+        }
     if isinstance(value, np.ndarray) and value.dtype.kind in "biuf":
         return {"$ndarray": value.tolist(), "$dtype": value.dtype.name}
     raise GraderError(f"cannot send a {type(value).__name__} to the sandbox")
@@ -188,6 +194,8 @@ def frames_field(frame: dict[str, Any]) -> tuple[LearnerFrame, ...]:
         ):
             raise ProtocolViolation("malformed traceback frame")
         out.append(
-            LearnerFrame(item["line"], clean_text(item["text"], 200), clean_text(item["function"], 100))
+            LearnerFrame(
+                item["line"], clean_text(item["text"], 200), clean_text(item["function"], 100)
+            )
         )
     return tuple(out)

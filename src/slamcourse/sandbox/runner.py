@@ -70,7 +70,8 @@ LoadStatus = Literal[
     "protocol_error",
 ]
 CallStatus = Literal["ok", "raised", "timeout", "crashed", "protocol_error"]
-_FATAL = ("timeout", "crashed", "protocol_error")
+Fatal = Literal["timeout", "crashed", "protocol_error"]
+_FATAL: tuple[Fatal, ...] = ("timeout", "crashed", "protocol_error")
 _POLL = 0.05  # seconds between checks that the worker is still alive while waiting
 _LOAD_STATUSES = frozenset(
     {"ok", "syntax_error", "import_error", "missing_function", "not_callable", "signature"}
@@ -135,7 +136,7 @@ class CallResult:
 class _Outcome:
     """What one request produced: a frame, or a fatal status with a message."""
 
-    status: str  # "frame" or one of _FATAL
+    status: Literal["frame"] | Fatal
     frame: dict[str, Any] | None = None
     message: str = ""
     stdout: str = ""
@@ -186,10 +187,8 @@ class _Resources:
         if proc is not None:
             with contextlib.suppress(OSError):
                 proc.kill()
-            try:
+            with contextlib.suppress(subprocess.TimeoutExpired):
                 proc.wait(timeout=10)
-            except subprocess.TimeoutExpired:  # pragma: no cover - a process SIGKILL cannot stop
-                pass
 
     def close(self) -> None:
         if self.closed:
@@ -226,7 +225,7 @@ class Worker:
         self._next_id = 0
         self._ready = False
         self._loaded: LoadResult | None = None
-        self._dead: tuple[str, str, int | None] | None = None  # status, message, exit code
+        self._dead: tuple[Fatal, str, int | None] | None = None  # status, message, exit code
         self._budget = limits.total_seconds
         self._buffer = bytearray()
         self._req_w = -1
@@ -348,10 +347,7 @@ class Worker:
         """
         if self._loaded is not None:
             raise GraderError("Worker.load() called twice; use one worker per submission")
-        if self._dead is not None:
-            return self._remember(self._dead_load())
-        self._await_ready()
-        if self._dead is not None:
+        if self._dead is not None or not self._await_ready():
             return self._remember(self._dead_load())
         request = {
             "op": "load",
@@ -364,7 +360,7 @@ class Worker:
         if out.status != "frame":
             return self._remember(
                 LoadResult(
-                    out.status,  # type: ignore[arg-type]
+                    out.status,
                     message=out.message,
                     stdout=out.stdout,
                     stderr=out.stderr,
@@ -384,14 +380,17 @@ class Worker:
         arrive as such). Raises :class:`GraderError` if there is no loaded function."""
         if self._dead is not None:
             status, message, code = self._dead
-            return CallResult(status, error=f"worker already stopped: {message}",  # type: ignore[arg-type]
-                              exit_code=code)
+            return CallResult(
+                status,
+                error=f"worker already stopped: {message}",
+                exit_code=code,
+            )
         if self._loaded is None or not self._loaded.ok:
             raise GraderError("Worker.call() needs a successful Worker.load() first")
         out = self._request({"op": "call", "args": list(args)})
         if out.status != "frame":
             return CallResult(
-                out.status,  # type: ignore[arg-type]
+                out.status,
                 error=out.message,
                 stdout=out.stdout,
                 stderr=out.stderr,
@@ -403,8 +402,13 @@ class Worker:
             return self._call_result(out.frame, out)
         except ProtocolViolation as exc:
             self._fail("protocol_error", f"the worker broke the protocol: {exc}")
-            return CallResult("protocol_error", error=self._dead[1] if self._dead else "",
-                              stdout=out.stdout, stderr=out.stderr, seconds=out.seconds)
+            return CallResult(
+                "protocol_error",
+                error=self._dead[1] if self._dead else "",
+                stdout=out.stdout,
+                stderr=out.stderr,
+                seconds=out.seconds,
+            )
 
     def close(self) -> None:
         """Kill the worker and everything it started; release pipes, cgroups and temp files."""
@@ -433,7 +437,7 @@ class Worker:
         assert self._dead is not None
         status, message, code = self._dead
         return LoadResult(
-            status,  # type: ignore[arg-type]
+            status,
             message=message,
             exit_code=code,
             stdout=out.stdout if out else "",
@@ -457,15 +461,19 @@ class Worker:
 
     def _call_result(self, frame: dict[str, Any], out: _Outcome) -> CallResult:
         status = frame["status"]
-        common: dict[str, Any] = {"stdout": out.stdout, "stderr": out.stderr,
-                                  "seconds": out.seconds}
+        common: dict[str, Any] = {
+            "stdout": out.stdout,
+            "stderr": out.stderr,
+            "seconds": out.seconds,
+        }
         if status == "ok":
             if "value" not in frame:
                 raise ProtocolViolation("ok reply without a value")
             return CallResult("ok", value=plain_value(frame["value"]), **common)
         if status == "raised":
-            return CallResult("raised", error=text_field(frame, "error"),
-                              frames=frames_field(frame), **common)
+            return CallResult(
+                "raised", error=text_field(frame, "error"), frames=frames_field(frame), **common
+            )
         if status == "oversize":
             size = int_or_none(frame, "size")
             what = f"{size} bytes" if size else "too many values"
@@ -479,14 +487,15 @@ class Worker:
 
     # -- transport ------------------------------------------------------------------------------
 
-    def _fail(self, status: str, message: str, exit_code: int | None = None) -> None:
+    def _fail(self, status: Fatal, message: str, exit_code: int | None = None) -> None:
         if self._dead is None:
             self._dead = (status, message, exit_code)
         self._res.kill()
 
-    def _await_ready(self) -> None:
+    def _await_ready(self) -> bool:
+        """Wait for the worker's ``ready`` frame; True, or SandboxError (no learner code ran)."""
         if self._ready:
-            return
+            return True
         out = self._exchange(None, 0, self._limits.start_seconds, starting=True)
         frame = out.frame
         if out.status != "frame" or frame is None or frame.get("status") != "ready":
@@ -500,12 +509,13 @@ class Worker:
             raise SandboxError("the sandbox worker could not join its cgroups")
         self._ready = True
         self.startup_seconds = time.monotonic() - self._spawned_at
+        return True
 
     def _request(self, request: dict[str, Any]) -> _Outcome:
         self._next_id += 1
         payload = encode_request({"id": self._next_id, **request})
         out = self._exchange(payload, self._next_id, self._limits.call_seconds)
-        if out.status in _FATAL:
+        if out.status != "frame":
             self._fail(out.status, out.message, out.exit_code)
         return out
 
@@ -522,19 +532,26 @@ class Worker:
         proc = self._res.proc
         assert proc is not None
 
-        def finish(status: str, message: str = "", frame: dict[str, Any] | None = None,
-                   exit_code: int | None = None) -> _Outcome:
+        def finish(
+            status: Literal["frame"] | Fatal,
+            message: str = "",
+            frame: dict[str, Any] | None = None,
+            exit_code: int | None = None,
+        ) -> _Outcome:
             self._drain(out_cap, err_cap)
             elapsed = time.monotonic() - start
             self._budget -= elapsed
-            return _Outcome(status, frame, message, out_cap.text(), err_cap.text(), elapsed,
-                            exit_code)
+            return _Outcome(
+                status, frame, message, out_cap.text(), err_cap.text(), elapsed, exit_code
+            )
 
         def timed_out() -> _Outcome:
             self._res.kill()
             if time.monotonic() >= overall and overall < per_request:
-                msg = (f"time limit exceeded: this submission used its total of "
-                       f"{limits.total_seconds:g} s")
+                msg = (
+                    f"time limit exceeded: this submission used its total of "
+                    f"{limits.total_seconds:g} s"
+                )
             elif starting:
                 msg = f"the worker did not start within {seconds:g} s"
             else:
@@ -566,7 +583,9 @@ class Worker:
                 if now >= deadline:
                     return timed_out()
                 try:
-                    _r, writable, _x = select.select([], [self._req_w], [], min(deadline - now, _POLL))
+                    _r, writable, _x = select.select(
+                        [], [self._req_w], [], min(deadline - now, _POLL)
+                    )
                 except InterruptedError:  # pragma: no cover
                     continue
                 if not writable:
@@ -574,7 +593,7 @@ class Worker:
                         return crashed()
                     continue
                 try:
-                    view = view[os.write(self._req_w, view):]
+                    view = view[os.write(self._req_w, view) :]
                 except BlockingIOError:
                     continue
                 except BrokenPipeError:

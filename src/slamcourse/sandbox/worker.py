@@ -73,19 +73,26 @@ def _contain(cfg: dict[str, str]) -> int:
 _CFG = _parse_argv(sys.argv[1:])
 _JOINED = _contain(_CFG)
 
+import builtins  # noqa: E402
+import contextlib  # noqa: E402
 import json  # noqa: E402
 import types  # noqa: E402
 from typing import Any  # noqa: E402
 
+_np: Any
 try:
-    import numpy as _np
-except Exception:  # numpy missing or broken: learners get an ImportError of their own
-    _np = None  # type: ignore[assignment]
+    import numpy
 
-# Keep private references: learner code may monkeypatch the public names.
+    _np = numpy
+except Exception:  # numpy missing or broken: learners get an ImportError of their own
+    _np = None
+
+# Keep private references: learner code may monkeypatch the public names. This is robustness,
+# not security: the learner controls this whole process, and the parent trusts none of it.
 _write = os.write
-_dumps = json.dumps
-_loads = json.loads
+_ENCODER = json.JSONEncoder(allow_nan=True, separators=(",", ":"))
+_BUILTINS = builtins.__dict__
+_BUILTINS_SNAPSHOT = dict(_BUILTINS)
 _FunctionType = types.FunctionType
 _ModuleType = types.ModuleType
 _type_name_getter = type.__dict__["__name__"].__get__
@@ -122,6 +129,13 @@ if _np is not None:
 else:
     _NDARRAY = None
     _NP_SCALARS = frozenset()
+
+
+def _restore_builtins() -> None:
+    """Undo patches of ``builtins`` (e.g. ``builtins.len = ...``) before the worker's own code
+    runs again; names the learner added are kept."""
+    with contextlib.suppress(BaseException):
+        _BUILTINS.update(_BUILTINS_SNAPSHOT)
 
 
 class _Oversize(Exception):
@@ -209,15 +223,11 @@ class Session:
 
     def send(self, frame: dict[str, Any]) -> None:
         _flush_learner_output()
-        data = (_dumps(frame, allow_nan=True, separators=(",", ":")) + "\n").encode()
+        _restore_builtins()
+        data = (_ENCODER.encode(frame) + "\n").encode()
         if _len(data) > self.frame_limit:
-            data = (
-                _dumps(
-                    {"id": frame.get("id"), "status": "oversize", "size": _len(data)},
-                    separators=(",", ":"),
-                )
-                + "\n"
-            ).encode()
+            oversize = {"id": frame.get("id"), "status": "oversize", "size": _len(data)}
+            data = (_ENCODER.encode(oversize) + "\n").encode()
         view = memoryview(data)
         while view:
             written = _write(self.resp_fd, view)
@@ -274,8 +284,10 @@ class Session:
         except (SystemExit, KeyboardInterrupt):
             raise
         except BaseException as exc:
+            _restore_builtins()
             info = self.describe(exc)
             return {"status": "import_error", "message": info["error"], "frames": info["frames"]}
+        _restore_builtins()
         namespace = module.__dict__
         function = namespace.get(req["function"]) if type(namespace) is dict else None
         if function is None:
@@ -300,7 +312,9 @@ class Session:
         except (SystemExit, KeyboardInterrupt):
             raise
         except BaseException as exc:
+            _restore_builtins()
             return {"status": "raised", **self.describe(exc)}
+        _restore_builtins()
         try:
             return {"status": "ok", "value": encode(result)}
         except (_Oversize, RecursionError, MemoryError):
@@ -320,8 +334,9 @@ def _arity_problem(function: Any, count: int) -> list[str] | None:
     has_varargs = bool(flags & 0x04)
     if has_varargs:
         names.insert(n_pos, "*" + code.co_varnames[n_pos + code.co_kwonlyargcount])
-    required_kw = [n for n in code.co_varnames[n_pos : n_pos + code.co_kwonlyargcount]
-                   if n not in kwdefaults]
+    required_kw = [
+        n for n in code.co_varnames[n_pos : n_pos + code.co_kwonlyargcount] if n not in kwdefaults
+    ]
     minimum = n_pos - _len(defaults)
     fits = minimum <= count and (count <= n_pos or has_varargs) and not required_kw
     return None if fits else [_str(n) for n in names]
@@ -329,10 +344,8 @@ def _arity_problem(function: Any, count: int) -> list[str] | None:
 
 def _flush_learner_output() -> None:
     for stream in (sys.stdout, sys.stderr):
-        try:
+        with contextlib.suppress(BaseException):
             stream.flush()
-        except BaseException:
-            pass
 
 
 def main() -> int:
@@ -345,12 +358,13 @@ def main() -> int:
     sys.path[:] = [p for p in sys.path if "-packages" not in p]
     session.send({"id": 0, "status": "ready", "numpy": numpy_version, "cgroups": _JOINED})
     requests = os.fdopen(req_fd, "rb", buffering=1 << 16)
+    decoder = json.JSONDecoder(object_hook=decode_arg)
     loaded = False
     while True:
         line = requests.readline()
         if not line:
             return 0
-        req = _loads(line, object_hook=decode_arg)
+        req = decoder.decode(line.decode())
         op = req.get("op")
         if op == "load" and not loaded:
             loaded = True

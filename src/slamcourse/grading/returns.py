@@ -1,0 +1,160 @@
+"""Return-value specifications of code exercises, and comparison against the reference.
+
+A spec is one of ``number``, ``integer``, ``angle``, ``boolean``, ``array`` or a list of these
+(a fixed-length tuple, e.g. ``[number, angle]``). Tuples, lists and numpy arrays are accepted
+alike: values arrive from the sandbox as plain JSON data (lists), and are checked here, in the
+trusted parent, before any comparison.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+from slamcourse.answers import format_number, wrap_angle
+from slamcourse.course.model import Tolerance
+
+SCALARS = ("number", "integer", "angle", "boolean")
+TYPES = (*SCALARS, "array")
+
+
+@dataclass(frozen=True)
+class Mismatch:
+    """Why a returned value is not accepted (shown to the learner)."""
+
+    message: str
+
+
+def parse_returns(raw: Any) -> tuple[str, ...] | str | None:
+    """The spec from YAML, or ``None`` if it is malformed."""
+    if isinstance(raw, str) and raw in TYPES:
+        return raw
+    if isinstance(raw, list) and raw and all(isinstance(r, str) and r in SCALARS for r in raw):
+        return tuple(raw)
+    return None
+
+
+def describe(spec: tuple[str, ...] | str) -> str:
+    if isinstance(spec, str):
+        return {"number": "a number", "integer": "a whole number", "angle": "an angle in radians",
+                "boolean": "True or False", "array": "an array"}[spec]
+    return f"a tuple of {len(spec)} ({', '.join(spec)})"
+
+
+def show(value: Any, limit: int = 200) -> str:
+    """A value as the learner should read it in feedback (numbers compact, long output cut)."""
+    if isinstance(value, bool) or value is None:
+        text = repr(value)
+    elif isinstance(value, int | float):
+        text = format_number(float(value)) if isinstance(value, float) else str(value)
+    elif isinstance(value, list | tuple):
+        text = "[" + ", ".join(show(v, limit) for v in value) + "]"
+    else:
+        text = str(value)
+    return text if len(text) <= limit else text[: limit - 1] + "…"
+
+
+def to_plain(value: Any) -> Any:
+    """Reference values (numpy, tuples) as the same plain data the sandbox returns."""
+    tolist = getattr(value, "tolist", None)
+    if callable(tolist):
+        value = tolist()
+    if isinstance(value, tuple | list):
+        return [to_plain(v) for v in value]
+    return value
+
+
+def compare(spec: tuple[str, ...] | str, got: Any, want: Any, tol: Tolerance) -> Mismatch | None:
+    """``None`` when ``got`` (plain data from the learner) matches ``want`` (the reference)."""
+    want = to_plain(want)
+    if isinstance(spec, tuple):
+        if not isinstance(got, list):
+            return Mismatch(f"expected {describe(spec)}, got {_what(got)}")
+        if len(got) != len(spec):
+            return Mismatch(f"expected {len(spec)} values, got {len(got)}")
+        for i, (kind, g, w) in enumerate(zip(spec, got, want, strict=True)):
+            problem = _scalar(kind, g, w, tol)
+            if problem:
+                return Mismatch(f"value {i + 1} of the tuple: {problem}")
+        return None
+    if spec == "array":
+        return _array(got, want, tol)
+    problem = _scalar(spec, got, want, tol)
+    return Mismatch(problem) if problem else None
+
+
+def _what(value: Any) -> str:
+    if isinstance(value, list):
+        return f"a sequence of {len(value)}"
+    if isinstance(value, bool):
+        return f"the boolean {value}"
+    if value is None:
+        return "None (did you forget to return?)"
+    if isinstance(value, str):
+        return "a string"
+    if isinstance(value, int | float):
+        return f"the number {show(value)}"
+    return str(value)  # an Unsupported marker explains itself
+
+
+def _number(value: Any) -> float | None:
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        return None
+    return float(value)
+
+
+def _scalar(kind: str, got: Any, want: Any, tol: Tolerance) -> str | None:
+    if kind == "boolean":
+        if not isinstance(got, bool):
+            return f"expected True or False, got {_what(got)}"
+        return None if got == bool(want) else f"expected {bool(want)}, got {got}"
+    number = _number(got)
+    if number is None:
+        return f"expected {describe(kind)}, got {_what(got)}"
+    if not math.isfinite(number):
+        return f"got {show(number)}, which is not a finite number"
+    target = float(want)
+    if kind == "integer":
+        if number != round(number):
+            return f"expected a whole number, got {show(number)}"
+        return None if round(number) == round(target) else f"expected {int(target)}, got {show(got)}"
+    if kind == "angle":
+        diff = abs(wrap_angle(number - target))
+        ok = diff <= tol.atol + tol.rtol * abs(wrap_angle(target))
+        return None if ok else (f"expected {show(target)} (mod 2π), got {show(number)}")
+    ok = abs(number - target) <= tol.atol + tol.rtol * abs(target)
+    return None if ok else f"expected {show(target)}, got {show(number)}"
+
+
+def _shape(value: Any) -> tuple[int, ...] | None:
+    if not isinstance(value, list):
+        return ()
+    shapes = {_shape(v) for v in value}
+    if len(shapes) > 1 or None in shapes:
+        return None  # ragged
+    inner = shapes.pop() if shapes else ()
+    return (len(value), *inner) if inner is not None else None
+
+
+def _array(got: Any, want: Any, tol: Tolerance) -> Mismatch | None:
+    want_shape, got_shape = _shape(want), _shape(got)
+    if got_shape is None:
+        return Mismatch("the returned array is ragged (rows of different lengths)")
+    if got_shape != want_shape:
+        words = "×".join(map(str, want_shape)) or "a scalar"
+        return Mismatch(f"expected an array of shape {words}, got "
+                        f"{'×'.join(map(str, got_shape)) or 'a scalar'}")
+
+    def walk(g: Any, w: Any, index: tuple[int, ...]) -> Mismatch | None:
+        if isinstance(w, list):
+            for i, (gi, wi) in enumerate(zip(g, w, strict=True)):
+                found = walk(gi, wi, (*index, i))
+                if found:
+                    return found
+            return None
+        problem = _scalar("number", g, w, tol)
+        where = "[" + "][".join(map(str, index)) + "]"
+        return Mismatch(f"entry {where}: {problem}") if problem else None
+
+    return walk(got, want, ())
