@@ -26,13 +26,13 @@ def test_fixture_course_loads_in_chapter_order() -> None:
     course = load_course(FIXTURE_COURSE)
     assert course.problems == []
     assert course.exercise_ids[:3] == ["basics/distance", "basics/heading", "basics/count"]
-    assert len(course.exercise_ids) == 10
+    assert len(course.exercise_ids) == 11
 
 
 def test_fixture_course_validates() -> None:
     report = validate_course(FIXTURE_COURSE, variants_per_exercise=10)
     assert report.problems == []
-    assert report.exercises == 10
+    assert report.exercises == 11
 
 
 @pytest.mark.parametrize(
@@ -139,7 +139,7 @@ def test_learner_flow(engine: Engine) -> None:
 
 def test_prompt_and_context(engine: Engine) -> None:
     prompt = engine.prompt("basics/distance", engine.variant("basics/distance", canonical=True))
-    assert "(3, 4)" in prompt.markdown and prompt.position == (1, 10)
+    assert "(3, 4)" in prompt.markdown and prompt.position == (1, 11)
     assert "within 1%" in prompt.how_to_answer
     assert "fixture chapter" in engine.context("basics/distance")
     assert "Angles are in radians" in engine.context("basics/heading")

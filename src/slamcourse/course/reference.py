@@ -14,16 +14,21 @@ from typing import Any
 from slamcourse.course.model import ExerciseSpec
 from slamcourse.errors import CourseError, Problem
 
-_modules: dict[Path, ModuleType] = {}
+_modules: dict[tuple[Path, int, int], ModuleType] = {}
 
 
 def module_for(spec: ExerciseSpec) -> ModuleType:
-    """Import (once) the ``reference.py`` beside ``spec``'s file."""
+    """Import the ``reference.py`` beside ``spec``'s file (again only when it has changed)."""
     path = spec.reference_path.resolve()
-    if path in _modules:
-        return _modules[path]
+    try:
+        stat = path.stat()
+        key = (path, stat.st_mtime_ns, stat.st_size)
+    except OSError:
+        key = (path, 0, 0)
+    if key in _modules:
+        return _modules[key]
     rel = _rel(spec, spec.reference_path)
-    name = "slamcourse_reference_" + hashlib.sha1(str(path).encode()).hexdigest()[:12]
+    name = "slamcourse_reference_" + hashlib.sha1(repr(key).encode()).hexdigest()[:12]
     loader_spec = importlib.util.spec_from_file_location(name, path)
     if loader_spec is None or loader_spec.loader is None or not path.is_file():
         raise CourseError(Problem(rel, None, "reference module not found"))
@@ -36,7 +41,7 @@ def module_for(spec: ExerciseSpec) -> ModuleType:
         raise CourseError(Problem(rel, _error_line(exc, path),
                                   f"importing the reference module failed: "
                                   f"{type(exc).__name__}: {exc}")) from None
-    _modules[path] = module
+    _modules[key] = module
     return module
 
 

@@ -71,7 +71,6 @@ LoadStatus = Literal[
 ]
 CallStatus = Literal["ok", "raised", "timeout", "crashed", "protocol_error"]
 Fatal = Literal["timeout", "crashed", "protocol_error"]
-_FATAL: tuple[Fatal, ...] = ("timeout", "crashed", "protocol_error")
 _POLL = 0.05  # seconds between checks that the worker is still alive while waiting
 _LOAD_STATUSES = frozenset(
     {"ok", "syntax_error", "import_error", "missing_function", "not_callable", "signature"}
@@ -234,6 +233,8 @@ class Worker:
         self._err_r = -1
         self.startup_seconds: float | None = None
         """Seconds from :meth:`spawn` until the worker reported ready (None before)."""
+        self.unenforced_limits: tuple[str, ...] = ()
+        """Resource limits this system refused to set (e.g. ``("as",)`` on macOS)."""
         self._spawned_at = 0.0
 
     # -- start ----------------------------------------------------------------------------------
@@ -507,6 +508,9 @@ class Worker:
         if frame.get("cgroups") != expected:
             self.close()
             raise SandboxError("the sandbox worker could not join its cgroups")
+        refused = frame.get("refused", [])
+        if type(refused) is list and all(type(r) is str for r in refused):
+            self.unenforced_limits = tuple(refused)
         self._ready = True
         self.startup_seconds = time.monotonic() - self._spawned_at
         return True

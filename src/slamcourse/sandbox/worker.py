@@ -42,8 +42,11 @@ def _parse_argv(argv: list[str]) -> dict[str, str]:
     return out
 
 
-def _contain(cfg: dict[str, str]) -> int:
-    """Join the parent's cgroups, then set the resource limits. Returns the cgroups joined."""
+def _contain(cfg: dict[str, str]) -> tuple[int, list[str]]:
+    """Join the parent's cgroups, then set the resource limits.
+
+    Returns the number of cgroups joined and the limits the system refused to set.
+    """
     joined = 0
     for text in filter(None, cfg.get("cg", "").split(",")):
         fd = int(text)
@@ -55,23 +58,28 @@ def _contain(cfg: dict[str, str]) -> int:
         finally:
             os.close(fd)
     limits = (
-        (resource.RLIMIT_CORE, 0),
-        (resource.RLIMIT_AS, int(cfg["as"])),
-        (resource.RLIMIT_CPU, int(cfg["cpu"])),
-        (resource.RLIMIT_FSIZE, int(cfg["fsize"])),
-        (resource.RLIMIT_NOFILE, int(cfg["nofile"])),
-        (resource.RLIMIT_NPROC, int(cfg["nproc"])),
+        ("core", 0),
+        ("as", int(cfg["as"])),
+        ("cpu", int(cfg["cpu"])),
+        ("fsize", int(cfg["fsize"])),
+        ("nofile", int(cfg["nofile"])),
+        ("nproc", int(cfg["nproc"])),
     )
-    for which, wanted in limits:
-        _soft, hard = resource.getrlimit(which)
-        value = wanted if hard == resource.RLIM_INFINITY else min(wanted, hard)
-        resource.setrlimit(which, (value, value))
-    return joined
+    refused = []
+    for name, wanted in limits:
+        which: int = getattr(resource, "RLIMIT_" + name.upper(), -1)
+        try:
+            _soft, hard = resource.getrlimit(which)
+            value = wanted if hard == resource.RLIM_INFINITY else min(wanted, hard)
+            resource.setrlimit(which, (value, value))
+        except (TypeError, ValueError, OSError):  # e.g. RLIMIT_AS on macOS
+            refused.append(name)
+    return joined, refused
 
 
 # Step 1 runs before anything else is imported.
 _CFG = _parse_argv(sys.argv[1:])
-_JOINED = _contain(_CFG)
+_JOINED, _REFUSED = _contain(_CFG)
 
 import builtins  # noqa: E402
 import contextlib  # noqa: E402
@@ -356,7 +364,8 @@ def main() -> int:
     # Learners get the same imports at every isolation level: the standard library and numpy
     # (already imported above), nothing else from site-packages.
     sys.path[:] = [p for p in sys.path if "-packages" not in p]
-    session.send({"id": 0, "status": "ready", "numpy": numpy_version, "cgroups": _JOINED})
+    ready = {"status": "ready", "numpy": numpy_version, "cgroups": _JOINED, "refused": _REFUSED}
+    session.send({"id": 0, **ready})
     requests = os.fdopen(req_fd, "rb", buffering=1 << 16)
     decoder = json.JSONDecoder(object_hook=decode_arg)
     loaded = False
