@@ -211,3 +211,100 @@ def mistake_d_bearing_wrong_coordinate(dx: Samples, dy: Samples, q: Samples) -> 
 def mistake_d_bearing_over_range(dx: Samples, dy: Samples, q: Samples) -> Samples:
     """``Δy/√q``: the range's denominator carried over to the bearing."""
     return dy / np.sqrt(q)
+
+
+# --- code exercises ``observation/observation-model`` and ``observation/jacobian`` ----------
+
+# Step of the central differences in :func:`range_bearing_jacobian` (metres, radians). With
+# coordinates of tens of metres and ranges above 0.5 m, the truncation error (~h²/r³) and the
+# rounding error (~1e-16·r/h) both stay near 1e-9, far inside the exercise's tolerance.
+FD_STEP = 1e-5
+
+
+def observation_model(xr: float, yr: float, thr: float, xj: float, yj: float) -> list[float]:
+    """``[r, φ]``: range (metres) and bearing (radians, wrapped into (−π, π]) of landmark
+    ``(xj, yj)`` seen from the pose ``(xr, yr, thr)``."""
+    return [float(v) for v in predict_measurement((xr, yr, thr), (xj, yj))]
+
+
+def range_bearing_jacobian(
+    xr: float, yr: float, thr: float, xj: float, yj: float
+) -> NDArray[np.float64]:
+    """``∂[r, φ]/∂(x_r, y_r, θ_r, x_j, y_j)`` by central finite differences; shape (2, 5).
+
+    Each column nudges one of the five inputs by ±``FD_STEP``; the bearing difference is wrapped
+    so that a bearing near ±π does not produce a jump of 2π.
+    """
+    point = np.array([xr, yr, thr, xj, yj], dtype=float)
+    J = np.zeros((2, 5))
+    for k in range(5):
+        e = np.zeros(5)
+        e[k] = FD_STEP
+        plus = np.array(observation_model(*(point + e)))
+        minus = np.array(observation_model(*(point - e)))
+        diff = plus - minus
+        diff[1] = wrap_angle(diff[1])
+        J[:, k] = diff / (2 * FD_STEP)
+    return J
+
+
+def observation_model_degrees(
+    xr: float, yr: float, thr: float, xj: float, yj: float
+) -> list[float]:
+    """Wrong: the bearing ``atan2(Δy, Δx) − θ_r`` (not wrapped) converted to degrees."""
+    dx, dy = xj - xr, yj - yr
+    return [math.hypot(dx, dy), math.degrees(math.atan2(dy, dx) - thr)]
+
+
+def observation_model_heading_ignored(
+    xr: float, yr: float, thr: float, xj: float, yj: float
+) -> list[float]:
+    """Wrong: the world-frame direction ``atan2(Δy, Δx)``, the heading not subtracted."""
+    return [math.hypot(xj - xr, yj - yr), math.atan2(yj - yr, xj - xr)]
+
+
+def observation_model_atan(
+    xr: float, yr: float, thr: float, xj: float, yj: float
+) -> list[float]:
+    """Wrong: ``atan(Δy/Δx) − θ_r``, which folds landmarks behind the robot onto the front.
+
+    (A learner's version divides by zero when ``Δx = 0``; this one returns ±π/2 there, the limit
+    ``atan`` approaches, so that it can be recognised on every input.)
+    """
+    dx, dy = xj - xr, yj - yr
+    world = math.atan(dy / dx) if dx != 0 else math.copysign(math.pi / 2, dy)
+    return [math.hypot(dx, dy), world - thr]
+
+
+def observation_model_squared_range(
+    xr: float, yr: float, thr: float, xj: float, yj: float
+) -> list[float]:
+    """Wrong: ``Δx² + Δy²`` (m²) returned as the range."""
+    r, phi = observation_model(xr, yr, thr, xj, yj)
+    return [r * r, phi]
+
+
+def jacobian_landmark_signs_flipped(
+    xr: float, yr: float, thr: float, xj: float, yj: float
+) -> list[list[float]]:
+    """Wrong: the landmark columns with the pose columns' signs (``∂Δx/∂x_j`` taken as −1)."""
+    H = observation_jacobian(xr, yr, thr, xj, yj)
+    for row in H:
+        row[3], row[4] = row[0], row[1]
+    return H
+
+
+def jacobian_heading_plus_one(
+    xr: float, yr: float, thr: float, xj: float, yj: float
+) -> list[list[float]]:
+    """Wrong: ``∂φ/∂θ_r = +1`` (the heading enters φ with a minus sign)."""
+    H = observation_jacobian(xr, yr, thr, xj, yj)
+    H[1][2] = 1.0
+    return H
+
+
+def jacobian_range_without_sqrt(
+    xr: float, yr: float, thr: float, xj: float, yj: float
+) -> list[list[float]]:
+    """Wrong: the range row divided by ``q`` instead of ``√q`` (e.g. ``−Δx/q``)."""
+    return mistake_jacobian_range_over_q(xr, yr, thr, xj, yj)

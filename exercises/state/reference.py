@@ -140,3 +140,36 @@ def mistake_zero_based_index(landmark: int, pose_dim: int = 3, landmark_dim: int
 def mistake_index_pose_forgotten(landmark: int, pose_dim: int = 3, landmark_dim: int = 2) -> int:
     """1-based position of ``x_j`` in a landmarks-only vector (the pose not counted)."""
     return landmark_dim * (landmark - 1) + 1
+
+
+# --- code exercise ``state/state-size`` -----------------------------------------------------
+
+
+def state_size(pose_dim: int, landmark_dim: int, num_landmarks: int) -> tuple[int, int]:
+    """``(n, n²)``: the state length and the number of entries of its ``n × n`` covariance."""
+    n = state_dimension(num_landmarks, pose_dim, landmark_dim)
+    return n, covariance_entry_count(num_landmarks, pose_dim, landmark_dim)
+
+
+def state_size_pose_forgotten(
+    pose_dim: int, landmark_dim: int, num_landmarks: int
+) -> tuple[int, int]:
+    """Wrong: the sizes of a landmarks-only state (the robot pose left out)."""
+    n = landmark_dim * num_landmarks
+    return n, n * n
+
+
+def state_size_unique_entries(
+    pose_dim: int, landmark_dim: int, num_landmarks: int
+) -> tuple[int, int]:
+    """Wrong: the covariance counted as its ``n(n + 1)/2`` distinct entries, not all ``n²``."""
+    n = state_dimension(num_landmarks, pose_dim, landmark_dim)
+    return n, unique_covariance_entries(num_landmarks, pose_dim, landmark_dim)
+
+
+def state_size_one_landmark_dim(
+    pose_dim: int, landmark_dim: int, num_landmarks: int
+) -> tuple[int, int]:
+    """Wrong: one number per landmark (``landmark_dim`` ignored)."""
+    n = pose_dim + num_landmarks
+    return n, n * n

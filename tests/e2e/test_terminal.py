@@ -38,8 +38,8 @@ def test_next_on_fixture_course(private_home: Path) -> None:
     child.expect_exact("Explanation")
     child.expect_exact("Enter for the next exercise")
     child.sendline("")
-    child.expect_exact("A heading")
-    child.expect_exact("Angles are in radians")  # the chapter prose leading to it
+    child.expect_exact("Angles are in radians")  # the chapter prose leading to it...
+    child.expect_exact("A heading")  # ...then the exercise
     child.sendline("pi/4")
     child.expect_exact("✗ not yet")  # the learner's own variant is not the canonical one
     child.sendline(":skip")
@@ -80,3 +80,32 @@ def test_next_on_bundled_course_solves_first_exercise(private_home: Path) -> Non
     child.expect(pexpect.EOF)
     child.close()
     assert child.exitstatus == 0
+
+
+def test_code_exercise_in_next(private_home: Path) -> None:
+    from slamcourse.cli import main
+
+    assert main(["--course", str(FIXTURE_COURSE), "goto", "basics/range-bearing"]) == 0
+    child = spawn(private_home, "--course", str(FIXTURE_COURSE), "next", "--no-context")
+    child.expect_exact("Write range_bearing")
+    child.expect(r"Starter written to (\S+\.py)")
+    path = Path(child.match.group(1))
+    assert path.is_file() and "NotImplementedError" in path.read_text()
+    child.expect_exact("check> ")
+    child.sendline("")
+    child.expect_exact("NotImplementedError")
+    child.expect_exact("range_bearing.py:6")
+    child.expect_exact("check> ")
+    path.write_text("import math\n\ndef range_bearing(dx, dy, theta):\n"
+                    "    return math.hypot(dx, dy), math.atan2(dy, dx) - theta\n")
+    child.sendline("")
+    child.expect_exact("✓ passed")
+    child.expect_exact("Enter for the next exercise")
+    child.sendline(":quit")
+    child.expect(pexpect.EOF)
+    child.close()
+    assert child.exitstatus == 0
+    # the learner's file is never overwritten by a later `next`
+    again = spawn(private_home, "--course", str(FIXTURE_COURSE), "goto", "basics/range-bearing")
+    again.expect(pexpect.EOF)
+    assert "math.hypot" in path.read_text()

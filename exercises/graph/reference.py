@@ -1,0 +1,148 @@
+"""Reference code for chapter ``graph``: the information form of a 1-D pose graph.
+
+Poses are scalars ``x_0 … x_{n−1}`` (metres along a line). A constraint (edge) between poses
+``i`` and ``j`` with information ``ω`` (1/m², the inverse of its variance) contributes
+
+    +ω at Ω[i, i] and Ω[j, j],   −ω at Ω[i, j] and Ω[j, i]
+
+to the information matrix ``Ω``. A prior of information ``ω₀`` on pose ``k`` adds ``ω₀`` to
+``Ω[k, k]`` only. The estimate ``μ`` solves the linear system ``Ω μ = ξ``.
+
+Every exercise function takes the exercise's parameters (or a code exercise's arguments) as
+keyword arguments. Functions whose name starts with ``mistake_`` are wrong implementations or
+wrong answers of a named misconception.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+Edge = tuple[int, int, float]
+
+
+# --- the information matrix -----------------------------------------------------------------
+
+
+def build_omega(n: int, edges: Sequence[Edge]) -> NDArray[np.float64]:
+    """``Ω`` (n × n) of a 1-D pose graph with the given ``(i, j, ω)`` edges."""
+    omega = np.zeros((n, n))
+    for i, j, w in edges:
+        omega[i, i] += w
+        omega[j, j] += w
+        omega[i, j] -= w
+        omega[j, i] -= w
+    return omega
+
+
+def omega_inputs() -> Any:
+    """Hypothesis strategy for ``build_omega``: 1–8 poses and up to 12 edges with i ≠ j.
+
+    Pairs may repeat (two measurements of the same relative motion) and either end may be the
+    larger index (a loop closure written from the newer pose back to the older one).
+    """
+    from hypothesis import strategies as st
+
+    def for_size(n: int) -> Any:
+        if n == 1:
+            return st.fixed_dictionaries({"n": st.just(1), "edges": st.just([])})
+        pair = st.tuples(st.integers(0, n - 1), st.integers(0, n - 1)).filter(
+            lambda p: p[0] != p[1])
+        weight = st.floats(0.1, 10.0, allow_nan=False, allow_infinity=False)
+        edge = st.builds(lambda p, w: (p[0], p[1], w), pair, weight)
+        return st.fixed_dictionaries({"n": st.just(n), "edges": st.lists(edge, max_size=12)})
+
+    return st.integers(1, 8).flatmap(for_size)
+
+
+def mistake_omega_no_off_diagonal(n: int, edges: Sequence[Edge]) -> NDArray[np.float64]:
+    """Only the diagonal entries: the −ω coupling the two poses is missing."""
+    omega = np.zeros((n, n))
+    for i, j, w in edges:
+        omega[i, i] += w
+        omega[j, j] += w
+    return omega
+
+
+def mistake_omega_plus_off_diagonal(n: int, edges: Sequence[Edge]) -> NDArray[np.float64]:
+    """+ω instead of −ω at (i, j) and (j, i)."""
+    omega = np.zeros((n, n))
+    for i, j, w in edges:
+        omega[i, i] += w
+        omega[j, j] += w
+        omega[i, j] += w
+        omega[j, i] += w
+    return omega
+
+
+def mistake_omega_upper_only(n: int, edges: Sequence[Edge]) -> NDArray[np.float64]:
+    """Only the upper triangle gets the −ω: the matrix is not symmetric."""
+    omega = np.zeros((n, n))
+    for i, j, w in edges:
+        omega[i, i] += w
+        omega[j, j] += w
+        omega[min(i, j), max(i, j)] -= w
+    return omega
+
+
+def mistake_omega_assigned(n: int, edges: Sequence[Edge]) -> NDArray[np.float64]:
+    """``=`` instead of ``+=``: each edge overwrites what earlier edges put in the same cells."""
+    omega = np.zeros((n, n))
+    for i, j, w in edges:
+        omega[i, i] = w
+        omega[j, j] = w
+        omega[i, j] = -w
+        omega[j, i] = -w
+    return omega
+
+
+# --- solving the information form -----------------------------------------------------------
+
+
+def solve_information(omega: Sequence[Sequence[float]], xi: Sequence[float]) -> NDArray[np.float64]:
+    """``μ`` with ``Ω μ = ξ`` (``Ω`` symmetric positive definite, n × n; ``ξ`` length n)."""
+    return np.linalg.solve(np.asarray(omega, dtype=float), np.asarray(xi, dtype=float))
+
+
+def information_system_inputs() -> Any:
+    """Hypothesis strategy for ``solve_information``: a connected 1-D pose graph anchored by a prior.
+
+    A chain of odometry edges, a few extra (loop-closure) edges and a prior on pose 0 make ``Ω``
+    symmetric, positive definite and weakly diagonally dominant; with at most 6 poses and
+    information between 0.5 and 5 (the prior between 1 and 20) it is well conditioned.
+    ``omega`` is passed as a list of rows, ``xi`` as a list.
+    """
+    from hypothesis import strategies as st
+
+    weight = st.floats(0.5, 5.0, allow_nan=False, allow_infinity=False)
+    value = st.floats(-10.0, 10.0, allow_nan=False, allow_infinity=False)
+
+    @st.composite
+    def system(draw: Any) -> dict[str, Any]:
+        n = draw(st.integers(1, 6))
+        edges = [(k, k + 1, draw(weight)) for k in range(n - 1)]
+        if n > 2:
+            pair = st.tuples(st.integers(0, n - 1), st.integers(0, n - 1)).filter(
+                lambda p: abs(p[0] - p[1]) > 1)
+            edges += [(i, j, draw(weight)) for i, j in draw(st.lists(pair, max_size=3))]
+        omega = build_omega(n, edges)
+        omega[0, 0] += draw(st.floats(1.0, 20.0, allow_nan=False, allow_infinity=False))
+        xi = draw(st.lists(value, min_size=n, max_size=n))
+        return {"omega": omega.tolist(), "xi": xi}
+
+    return system()
+
+
+def mistake_solve_diagonal_only(omega: Sequence[Sequence[float]],
+                                xi: Sequence[float]) -> NDArray[np.float64]:
+    """``ξ_i / Ω_ii``: ignores the off-diagonal couplings (exact only for a diagonal Ω)."""
+    return np.asarray(xi, dtype=float) / np.diag(np.asarray(omega, dtype=float))
+
+
+def mistake_solve_multiplied(omega: Sequence[Sequence[float]],
+                             xi: Sequence[float]) -> NDArray[np.float64]:
+    """``Ω ξ``: multiplied by Ω instead of solving (multiplying by Ω⁻¹)."""
+    return np.asarray(omega, dtype=float) @ np.asarray(xi, dtype=float)

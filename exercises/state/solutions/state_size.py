@@ -1,0 +1,3 @@
+def state_size(pose_dim, landmark_dim, num_landmarks):
+    n = pose_dim + landmark_dim * num_landmarks
+    return n, n * n
