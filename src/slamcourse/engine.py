@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from slamcourse.course import templates, variants
 from slamcourse.course.loader import Course, chapter_segments, load_course
@@ -18,6 +18,9 @@ from slamcourse.errors import UsageError
 from slamcourse.kinds import get_kind
 from slamcourse.progress import ExerciseState, Progress
 from slamcourse.verdict import Verdict
+
+if TYPE_CHECKING:
+    from slamcourse.grading.pool import WorkerPool
 
 
 @dataclass(frozen=True)
@@ -44,9 +47,11 @@ class Hint:
 class Engine:
     """A course plus (optionally) a learner's progress."""
 
-    def __init__(self, course: Course, progress: Progress | None = None) -> None:
+    def __init__(self, course: Course, progress: Progress | None = None, *,
+                 pool: WorkerPool | None = None) -> None:
         self.course = course
         self.progress = progress
+        self.pool = pool  # a long-running engine keeps a sandbox worker ready for code checks
 
     @classmethod
     def open(cls, course_path: str | Path | None = None, *, with_progress: bool = True,
@@ -58,6 +63,8 @@ class Engine:
     def close(self) -> None:
         if self.progress is not None:
             self.progress.close()
+        if self.pool is not None:
+            self.pool.close()
 
     def __enter__(self) -> Engine:
         return self
@@ -129,8 +136,9 @@ class Engine:
         if spec.kind != "code":
             raise UsageError(f"{exercise_id} is a {spec.kind} exercise: answer it with --answer")
         source = read_source(path)
-        verdict = get_kind("code").check_source(spec, source, path.name,  # type: ignore[attr-defined]
-                                                require_isolation=require_isolation)
+        worker = self.pool.take() if self.pool is not None else None
+        verdict = get_kind("code").check_source(  # type: ignore[attr-defined]
+            spec, source, path.name, require_isolation=require_isolation, worker=worker)
         if record and self.progress is not None:
             digest = hashlib.sha256(source.encode("utf-8", "replace")).hexdigest()[:16]
             self.progress.record_attempt(exercise_id, 0, f"{path} sha256:{digest}", verdict)

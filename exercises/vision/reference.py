@@ -1,0 +1,256 @@
+"""Reference code for chapter ``vision``: two-view geometry and RANSAC.
+
+Image points are in normalised homogeneous coordinates ``x = [u, v, 1]`` (the pixel coordinates
+with the camera intrinsics removed). With the second camera related to the first by the
+rotation ``R`` and translation ``t``, the essential matrix is ``E = [t]× R`` where
+
+    [t]× = [[0, −t_z, t_y], [t_z, 0, −t_x], [−t_y, t_x, 0]]
+
+is the matrix with ``[t]× v = t × v``. A correspondence ``x ↔ x′`` of the same 3D point
+satisfies the epipolar constraint ``x′ᵀ E x = 0``; with noise, ``x′ᵀ E x`` is the residual.
+
+RANSAC needs ``N = ⌈log(1 − p) / log(1 − wˢ)⌉`` random minimal samples of size ``s`` to draw at
+least one sample made only of inliers with probability ``p`` when a fraction ``w`` of the
+data are inliers.
+
+Every exercise function takes the exercise's parameters (or a code exercise's arguments) as
+keyword arguments. Functions whose name starts with ``mistake_`` are wrong implementations or
+wrong answers of a named misconception.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+Vector = Sequence[float]
+Matrix = Sequence[Sequence[float]]
+
+
+# --- RANSAC iteration count -----------------------------------------------------------------
+
+
+def ransac_ratio(inlier_ratio: float, sample_size: int, confidence: float) -> float:
+    """``log(1 − p) / log(1 − wˢ)`` before rounding up (a real number of samples)."""
+    return math.log(1 - confidence) / math.log(1 - inlier_ratio**sample_size)
+
+
+def ransac_iterations(inlier_ratio: float, sample_size: int, confidence: float) -> int:
+    """Number of RANSAC samples ``⌈log(1 − p) / log(1 − wˢ)⌉``."""
+    return math.ceil(ransac_ratio(inlier_ratio, sample_size, confidence))
+
+
+def mistake_ransac_rounded(inlier_ratio: float, sample_size: int, confidence: float) -> int:
+    """Rounded to the nearest integer instead of up."""
+    return round(ransac_ratio(inlier_ratio, sample_size, confidence))
+
+
+def mistake_ransac_floored(inlier_ratio: float, sample_size: int, confidence: float) -> int:
+    """Rounded down (``floor`` or ``int``) instead of up."""
+    return math.floor(ransac_ratio(inlier_ratio, sample_size, confidence))
+
+
+def mistake_ransac_outlier_ratio(inlier_ratio: float, sample_size: int, confidence: float) -> int:
+    """``(1 − w)ˢ`` (the chance of an all-outlier sample) in place of ``wˢ``."""
+    return ransac_iterations(1 - inlier_ratio, sample_size, confidence)
+
+
+def mistake_ransac_no_exponent(inlier_ratio: float, sample_size: int, confidence: float) -> int:
+    """``w`` in place of ``wˢ``: as if a sample were a single point."""
+    return ransac_iterations(inlier_ratio, 1, confidence)
+
+
+# --- the epipolar residual ------------------------------------------------------------------
+
+
+def epipolar_residual(E: Matrix, x: Vector, x2: Vector) -> float:
+    """``x′ᵀ E x`` for the essential matrix ``E`` (3 × 3), ``x`` in image 1 and ``x2`` in image 2."""
+    return float(np.asarray(x2, dtype=float) @ np.asarray(E, dtype=float) @ np.asarray(x, dtype=float))
+
+
+def epipolar_inputs() -> Any:
+    """Hypothesis strategy for ``epipolar_residual``: E with entries in [−2, 2] (list of rows),
+    and two normalised image points ``[u, v, 1]`` with ``u, v`` in [−1.5, 1.5]."""
+    from hypothesis import strategies as st
+
+    entry = st.floats(-2.0, 2.0, allow_nan=False, allow_infinity=False)
+    coord = st.floats(-1.5, 1.5, allow_nan=False, allow_infinity=False)
+    row = st.lists(entry, min_size=3, max_size=3)
+    point = st.builds(lambda u, v: [u, v, 1.0], coord, coord)
+    return st.fixed_dictionaries({"E": st.lists(row, min_size=3, max_size=3),
+                                  "x": point, "x2": point})
+
+
+def mistake_epipolar_transposed(E: Matrix, x: Vector, x2: Vector) -> float:
+    """``xᵀ E x′``: the two points swapped (the constraint of Eᵀ)."""
+    return epipolar_residual(E, x2, x)
+
+
+def epipolar_value(u1: float, v1: float, u2: float, v2: float) -> float:
+    """``x′ᵀ E x`` for the lesson's E, ``x = [u1, v1, 1]`` and ``x′ = [u2, v2, 1]``."""
+    return epipolar_residual(LESSON_E, [u1, v1, 1.0], [u2, v2, 1.0])
+
+
+def mistake_epipolar_value_transposed(u1: float, v1: float, u2: float, v2: float) -> float:
+    """``xᵀ E x′`` for the lesson's E."""
+    return epipolar_residual(LESSON_E, [u2, v2, 1.0], [u1, v1, 1.0])
+
+
+LESSON_E = [[0.0, -1.0, 0.0], [1.0, 0.0, -0.5], [0.0, 0.3, 0.0]]
+
+
+# --- the essential matrix from a relative pose ----------------------------------------------
+
+
+def skew(t: Vector) -> NDArray[np.float64]:
+    """``[t]×``: the 3 × 3 matrix with ``skew(t) @ v == np.cross(t, v)``."""
+    tx, ty, tz = (float(c) for c in t)
+    return np.array([[0.0, -tz, ty], [tz, 0.0, -tx], [-ty, tx, 0.0]])
+
+
+def essential_matrix(t: Vector, R: Matrix) -> NDArray[np.float64]:
+    """``E = [t]× R`` (3 × 3) for translation ``t`` (3,) and rotation ``R`` (3 × 3)."""
+    return skew(t) @ np.asarray(R, dtype=float)
+
+
+def rotation_from_quaternion(q: Vector) -> NDArray[np.float64]:
+    """The rotation matrix of the (not necessarily unit) quaternion ``q = (w, x, y, z)``."""
+    w, x, y, z = np.asarray(q, dtype=float) / np.linalg.norm(q)
+    return np.array([
+        [1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+        [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+        [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)],
+    ])
+
+
+def essential_inputs() -> Any:
+    """Hypothesis strategy for ``essential_matrix``: ``t`` in [−3, 3]³ and a proper rotation ``R``
+    (orthonormal, det +1; from a random quaternion of norm ≥ 0.5), both as plain lists."""
+    from hypothesis import strategies as st
+
+    coord = st.floats(-3.0, 3.0, allow_nan=False, allow_infinity=False)
+    quat = st.lists(st.floats(-1.0, 1.0, allow_nan=False, allow_infinity=False),
+                    min_size=4, max_size=4).filter(lambda q: math.fsum(c * c for c in q) >= 0.25)
+    return st.fixed_dictionaries({
+        "t": st.lists(coord, min_size=3, max_size=3),
+        "R": quat.map(lambda q: rotation_from_quaternion(q).tolist()),
+    })
+
+
+def mistake_essential_wrong_order(t: Vector, R: Matrix) -> NDArray[np.float64]:
+    """``R [t]×``: the factors multiplied in the wrong order."""
+    return np.asarray(R, dtype=float) @ skew(t)
+
+
+def mistake_essential_skew_sign(t: Vector, R: Matrix) -> NDArray[np.float64]:
+    """``[t]×ᵀ R = −[t]× R``: the skew matrix built with the opposite sign convention."""
+    return -essential_matrix(t, R)
+
+
+def mistake_essential_cross_rows(t: Vector, R: Matrix) -> NDArray[np.float64]:
+    """``t × (row k of R)`` as row k: the rows of R crossed instead of its columns."""
+    return np.cross(np.asarray(t, dtype=float), np.asarray(R, dtype=float))
+
+
+# --- RANSAC: scoring candidate lines --------------------------------------------------------
+
+
+def point_line_distance(a: Vector, b: Vector, q: Vector) -> float:
+    """Perpendicular distance from ``q`` to the line through ``a`` and ``b`` (a ≠ b)."""
+    dx, dy = b[0] - a[0], b[1] - a[1]
+    return abs(dx * (q[1] - a[1]) - dy * (q[0] - a[0])) / math.hypot(dx, dy)
+
+
+def inlier_counts(points: Sequence[Vector], samples: Sequence[Sequence[int]],
+                  threshold: float) -> list[int]:
+    """For each sample ``(a, b)``: how many of ``points`` lie closer than ``threshold`` to the
+    line through ``points[a]`` and ``points[b]``."""
+    return [sum(point_line_distance(points[a], points[b], q) < threshold for q in points)
+            for a, b in samples]
+
+
+def best_line(points: Sequence[Vector], samples: Sequence[Sequence[int]], threshold: float) -> int:
+    """Index (into ``samples``) of the candidate line with the most inliers among all points;
+    the first such index on ties."""
+    counts = inlier_counts(points, samples, threshold)
+    return counts.index(max(counts))
+
+
+def mistake_best_line_sample_only(points: Sequence[Vector], samples: Sequence[Sequence[int]],
+                                  threshold: float) -> int:
+    """The buggy loop: inliers counted among the sample's own two points, so every candidate
+    scores 2 and the first one wins."""
+    counts = [sum(point_line_distance(points[a], points[b], points[k]) < threshold
+                  for k in (a, b)) for a, b in samples]
+    return counts.index(max(counts))
+
+
+def mistake_best_line_vertical_distance(points: Sequence[Vector],
+                                        samples: Sequence[Sequence[int]],
+                                        threshold: float) -> int:
+    """Inliers judged by the vertical gap ``|y − (m x + c)|`` instead of the perpendicular
+    distance (a steep line then has almost no inliers)."""
+    counts = []
+    for a, b in samples:
+        (xa, ya), (xb, yb) = points[a], points[b]
+        if xb == xa:  # no slope: only points exactly on the vertical line have a finite gap
+            counts.append(sum(q[0] == xa for q in points))
+            continue
+        m = (yb - ya) / (xb - xa)
+        counts.append(sum(abs(q[1] - (ya + m * (q[0] - xa))) < threshold for q in points))
+    return counts.index(max(counts))
+
+
+def mistake_best_line_returns_count(points: Sequence[Vector], samples: Sequence[Sequence[int]],
+                                    threshold: float) -> int:
+    """The best inlier count returned instead of the index of the best sample."""
+    return max(inlier_counts(points, samples, threshold))
+
+
+def ransac_line_inputs() -> Any:
+    """Hypothesis strategy for ``best_line``.
+
+    Points (lists ``[x, y]``, metres) are 3–10 points near a random line (perpendicular noise
+    up to 0.2) and 2–8 scattered points, shuffled. ``samples`` holds 2–6 pairs of distinct point
+    indices whose points are at least 0.5 apart. ``threshold`` is in [0.4, 1.0]. Draws are kept
+    only when the best sample is unique and no point lies within 1e-6 of the threshold, so the
+    answer never hinges on a tie or on rounding.
+    """
+    from hypothesis import strategies as st
+
+    num = st.floats(-10.0, 10.0, allow_nan=False, allow_infinity=False)
+
+    @st.composite
+    def data(draw: Any) -> dict[str, Any]:
+        angle = draw(st.floats(0.0, math.pi, allow_nan=False))
+        offset = draw(st.floats(-5.0, 5.0, allow_nan=False))
+        d = (math.cos(angle), math.sin(angle))
+        nrm = (-d[1], d[0])
+        points = []
+        for _ in range(draw(st.integers(3, 10))):
+            s = draw(num)
+            e = offset + draw(st.floats(-0.2, 0.2, allow_nan=False))
+            points.append([e * nrm[0] + s * d[0], e * nrm[1] + s * d[1]])
+        for _ in range(draw(st.integers(2, 8))):
+            points.append([draw(num), draw(num)])
+        points = draw(st.permutations(points))
+        n = len(points)
+        pair = st.tuples(st.integers(0, n - 1), st.integers(0, n - 1)).filter(
+            lambda p: math.dist(points[p[0]], points[p[1]]) >= 0.5)
+        samples = [list(p) for p in draw(st.lists(pair, min_size=2, max_size=6))]
+        threshold = draw(st.floats(0.4, 1.0, allow_nan=False))
+        return {"points": points, "samples": samples, "threshold": threshold}
+
+    def clean(kw: dict[str, Any]) -> bool:
+        pts, thr = kw["points"], kw["threshold"]
+        for a, b in kw["samples"]:
+            if any(abs(point_line_distance(pts[a], pts[b], q) - thr) < 1e-6 for q in pts):
+                return False
+        counts = inlier_counts(pts, kw["samples"], thr)
+        return counts.count(max(counts)) == 1
+
+    return data().filter(clean)
