@@ -26,16 +26,18 @@ def environment() -> dict[str, str]:
 
 def run_once(cmd: Sequence[str], env: dict[str, str]) -> float:
     start = time.perf_counter()
-    done = subprocess.run(cmd, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
-                          check=False)
+    done = subprocess.run(
+        cmd, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, check=False
+    )
     elapsed = time.perf_counter() - start
     if done.returncode not in (0, 1):
         raise SystemExit(f"{' '.join(cmd)} failed ({done.returncode}): {done.stderr.decode()}")
     return elapsed
 
 
-def interleaved(commands: dict[str, Sequence[str]], runs: int, env: dict[str, str],
-                warmup: int = 2) -> dict[str, float]:
+def interleaved(
+    commands: dict[str, Sequence[str]], runs: int, env: dict[str, str], warmup: int = 2
+) -> dict[str, float]:
     """Median wall time (s) of each command, runs interleaved so load drifts hit all alike."""
     for cmd in commands.values():
         for _ in range(warmup):

@@ -31,18 +31,32 @@ def main() -> None:
     args = parser.parse_args()
     chapter = args.exercise.split("/")[0]
     solution = args.file or REPO / "exercises" / chapter / "solutions" / (
-        args.exercise.split("/")[1].replace("-", "_") + ".py")
+        args.exercise.split("/")[1].replace("-", "_") + ".py"
+    )
     env = environment()
     slam = str(BIN / "slamcourse")
     commands = {
         "python -c 'import numpy, hypothesis' (baseline)": [
-            sys.executable, "-c", "import numpy, hypothesis"],
+            sys.executable,
+            "-c",
+            "import numpy, hypothesis",
+        ],
         f"slamcourse check {args.exercise} --file …": [
-            slam, "check", args.exercise, "--file", str(solution), "--no-record"],
+            slam,
+            "check",
+            args.exercise,
+            "--file",
+            str(solution),
+            "--no-record",
+        ],
     }
     medians = interleaved(commands, args.runs, env)
-    report(f"code check, whole process, median of {args.runs} interleaved runs", medians,
-           "python -c 'import numpy, hypothesis' (baseline)", 1.5)
+    report(
+        f"code check, whole process, median of {args.runs} interleaved runs",
+        medians,
+        "python -c 'import numpy, hypothesis' (baseline)",
+        1.5,
+    )
     repeated(args.exercise, solution, args.repeats)
 
 
@@ -68,8 +82,10 @@ def repeated(exercise: str, solution: Path, repeats: int) -> None:
     p50 = statistics.median(times)
     p90 = times[int(0.9 * (len(times) - 1))]
     verdict_mark = "ok" if p50 <= 0.150 else "over 150 ms"
-    print(f"repeated check in a running engine ({repeats} checks, "
-          f"{verdict.details['examples']} examples each, isolation {verdict.details['isolation']})")
+    print(
+        f"repeated check in a running engine ({repeats} checks, "
+        f"{verdict.details['examples']} examples each, isolation {verdict.details['isolation']})"
+    )
     print(f"  p50 {p50 * 1000:.1f} ms  p90 {p90 * 1000:.1f} ms  {verdict_mark}")
 
 

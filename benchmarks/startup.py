@@ -23,12 +23,22 @@ def main() -> None:
     commands = {
         "python -c 'import numpy' (baseline)": [sys.executable, "-c", "import numpy"],
         "slamcourse check predicted-range --answer 5": [
-            slam, "check", "observation/predicted-range", "--answer", "5", "--canonical"],
+            slam,
+            "check",
+            "observation/predicted-range",
+            "--answer",
+            "5",
+            "--canonical",
+        ],
         "slamcourse show predicted-bearing": [slam, "show", "observation/predicted-bearing"],
     }
     medians = interleaved(commands, args.runs, environment())
-    report(f"start-up, median of {args.runs} interleaved runs", medians,
-           "python -c 'import numpy' (baseline)", 1.5)
+    report(
+        f"start-up, median of {args.runs} interleaved runs",
+        medians,
+        "python -c 'import numpy' (baseline)",
+        1.5,
+    )
 
 
 if __name__ == "__main__":

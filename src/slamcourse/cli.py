@@ -74,14 +74,23 @@ def _use_color(stream: TextIO) -> bool:
     return bool(getattr(stream, "isatty", lambda: False)())
 
 
-VERDICT_STYLE = {"passed": ("bold", "green"), "failed": ("bold", "red"),
-                 "invalid": ("bold", "yellow"), "timeout": ("bold", "red"),
-                 "error": ("bold", "magenta")}
+VERDICT_STYLE = {
+    "passed": ("bold", "green"),
+    "failed": ("bold", "red"),
+    "invalid": ("bold", "yellow"),
+    "timeout": ("bold", "red"),
+    "error": ("bold", "magenta"),
+}
 
 
 def print_verdict(out: Out, verdict: Verdict) -> None:
-    label = {"passed": "✓ passed", "failed": "✗ not yet", "invalid": "? unreadable",
-             "timeout": "⏱ timeout", "error": "! grader error"}[verdict.status]
+    label = {
+        "passed": "✓ passed",
+        "failed": "✗ not yet",
+        "invalid": "? unreadable",
+        "timeout": "⏱ timeout",
+        "error": "! grader error",
+    }[verdict.status]
     out.line(f"{out.style(label, *VERDICT_STYLE[verdict.status])}  {_math(verdict.feedback)}")
     if verdict.status == "invalid":
         out.line(out.style("  (no attempt counted)", "dim"))
@@ -108,8 +117,9 @@ def _engine(args: argparse.Namespace, *, with_progress: bool = True) -> Engine:
 
 
 def _variant(engine: Engine, args: argparse.Namespace, exercise_id: str) -> Variant:
-    return engine.variant(exercise_id, canonical=getattr(args, "canonical", False),
-                          seed=getattr(args, "seed", None))
+    return engine.variant(
+        exercise_id, canonical=getattr(args, "canonical", False), seed=getattr(args, "seed", None)
+    )
 
 
 def _target(engine: Engine, given: str | None) -> str:
@@ -122,12 +132,15 @@ def _target(engine: Engine, given: str | None) -> str:
     return current
 
 
-def _show_prompt(out: Out, engine: Engine, exercise_id: str, variant: Variant, *,
-                 context: bool) -> None:
+def _show_prompt(
+    out: Out, engine: Engine, exercise_id: str, variant: Variant, *, context: bool
+) -> None:
     prompt = engine.prompt(exercise_id, variant)
     index, count = prompt.position
-    out.line(out.style(f"── {prompt.chapter_title} · exercise {index} of {count} ", "dim")
-             + out.style(f"[{exercise_id}]", "dim"))
+    out.line(
+        out.style(f"── {prompt.chapter_title} · exercise {index} of {count} ", "dim")
+        + out.style(f"[{exercise_id}]", "dim")
+    )
     if context:
         prose = engine.context(exercise_id)
         if prose:
@@ -154,8 +167,9 @@ def cmd_next(args: argparse.Namespace, out: Out) -> int:
         while True:
             exercise_id = engine.next_exercise()
             if exercise_id is None:
-                out.line(out.style("Every exercise is solved or given up. Well done!", "bold",
-                                   "green"))
+                out.line(
+                    out.style("Every exercise is solved or given up. Well done!", "bold", "green")
+                )
                 out.line("`slamcourse list` shows them all; `slamcourse reset ID` opens one again.")
                 return 0
             engine.goto(exercise_id)
@@ -249,8 +263,14 @@ def cmd_check(args: argparse.Namespace, out: Out) -> int:
         variant = _variant(engine, args, args.exercise)
         verdict = engine.check(args.exercise, args.answer, variant, record=not args.no_record)
         if args.json:
-            out.json({"exercise": args.exercise, "variant": variant.seed,
-                      "answer": args.answer, "verdict": verdict.to_dict()})
+            out.json(
+                {
+                    "exercise": args.exercise,
+                    "variant": variant.seed,
+                    "answer": args.answer,
+                    "verdict": verdict.to_dict(),
+                }
+            )
         else:
             print_verdict(out, verdict)
         return verdict.exit_code
@@ -260,17 +280,22 @@ def _check_code(args: argparse.Namespace, out: Out, engine: Engine) -> int:
     from pathlib import Path
 
     if args.answer is not None:
-        raise UsageError(f"{args.exercise} is a code exercise: grade a file with --file PATH "
-                         "(or leave it out to grade your workspace file)")
+        raise UsageError(
+            f"{args.exercise} is a code exercise: grade a file with --file PATH "
+            "(or leave it out to grade your workspace file)"
+        )
     if args.file is not None:
         path = Path(args.file)
     else:
         path, _ = engine.code_file(args.exercise, create=False)
         if not path.exists():
-            raise UsageError(f"no file {path} yet: `slamcourse next` (or `goto {args.exercise}` "
-                             "then `next`) writes the starter; or pass --file PATH")
-    verdict = engine.check_code(args.exercise, path, require_isolation=args.require_isolation,
-                                record=not args.no_record)
+            raise UsageError(
+                f"no file {path} yet: `slamcourse next` (or `goto {args.exercise}` "
+                "then `next`) writes the starter; or pass --file PATH"
+            )
+    verdict = engine.check_code(
+        args.exercise, path, require_isolation=args.require_isolation, record=not args.no_record
+    )
     if args.json:
         out.json({"exercise": args.exercise, "file": str(path), "verdict": verdict.to_dict()})
     else:
@@ -283,9 +308,17 @@ def cmd_show(args: argparse.Namespace, out: Out) -> int:
         variant = _variant(engine, args, args.exercise)
         if args.json:
             prompt = engine.prompt(args.exercise, variant)
-            out.json({"exercise": args.exercise, "title": prompt.title, "kind": prompt.kind,
-                      "chapter": prompt.chapter_title, "variant": variant.seed,
-                      "prompt": prompt.markdown, "how_to_answer": prompt.how_to_answer})
+            out.json(
+                {
+                    "exercise": args.exercise,
+                    "title": prompt.title,
+                    "kind": prompt.kind,
+                    "chapter": prompt.chapter_title,
+                    "variant": variant.seed,
+                    "prompt": prompt.markdown,
+                    "how_to_answer": prompt.how_to_answer,
+                }
+            )
         else:
             _show_prompt(out, engine, args.exercise, variant, context=args.context)
         return 0
@@ -296,11 +329,19 @@ def cmd_hint(args: argparse.Namespace, out: Out) -> int:
         exercise_id = _target(engine, args.exercise)
         hint = engine.hint(exercise_id, engine.variant(exercise_id))
         if args.json:
-            out.json({"exercise": exercise_id, "number": hint.number, "total": hint.total,
-                      "hint": hint.text})
+            out.json(
+                {
+                    "exercise": exercise_id,
+                    "number": hint.number,
+                    "total": hint.total,
+                    "hint": hint.text,
+                }
+            )
         elif hint.text is None:
-            out.line(f"No more hints for {exercise_id} ({hint.total} shown). "
-                     f"`slamcourse giveup {exercise_id}` shows the explanation.")
+            out.line(
+                f"No more hints for {exercise_id} ({hint.total} shown). "
+                f"`slamcourse giveup {exercise_id}` shows the explanation."
+            )
         else:
             out.line(out.style(f"hint {hint.number}/{hint.total} for {exercise_id}:", "yellow"))
             out.markdown(hint.text)
@@ -311,8 +352,10 @@ def cmd_explain(args: argparse.Namespace, out: Out) -> int:
     with _engine(args) as engine:
         state = engine.state(args.exercise)
         if state.status == "pending":
-            raise UsageError(f"{args.exercise} is not solved yet: solve it first, or "
-                             f"`slamcourse giveup {args.exercise}` to see the explanation")
+            raise UsageError(
+                f"{args.exercise} is not solved yet: solve it first, or "
+                f"`slamcourse giveup {args.exercise}` to see the explanation"
+            )
         text = engine.explanation(args.exercise, engine.variant(args.exercise))
         if args.json:
             out.json({"exercise": args.exercise, "explanation": text})
@@ -334,11 +377,16 @@ def cmd_list(args: argparse.Namespace, out: Out) -> int:
         if args.json:
             out.json(summary)
             return 0
-        marks = {"solved": out.style("✓", "green"), "given_up": out.style("~", "yellow"),
-                 "pending": out.style("·", "dim")}
+        marks = {
+            "solved": out.style("✓", "green"),
+            "given_up": out.style("~", "yellow"),
+            "pending": out.style("·", "dim"),
+        }
         for ch in summary:
-            out.line(out.style(f"{ch['number']:>2}. {ch['title']}", "bold")
-                     + f"  ({ch['solved']}/{ch['total']})")
+            out.line(
+                out.style(f"{ch['number']:>2}. {ch['title']}", "bold")
+                + f"  ({ch['solved']}/{ch['total']})"
+            )
             for row in ch["exercises"]:
                 pointer = out.style(" ← next", "cyan") if row["current"] else ""
                 title = engine.exercise(row["id"]).title
@@ -353,9 +401,16 @@ def cmd_status(args: argparse.Namespace, out: Out) -> int:
         total = sum(ch["total"] for ch in summary)
         nxt = engine.next_exercise()
         if args.json:
-            out.json({"solved": solved, "total": total, "next": nxt,
-                      "chapters": [{k: ch[k] for k in ("id", "title", "solved", "total")}
-                                   for ch in summary]})
+            out.json(
+                {
+                    "solved": solved,
+                    "total": total,
+                    "next": nxt,
+                    "chapters": [
+                        {k: ch[k] for k in ("id", "title", "solved", "total")} for ch in summary
+                    ],
+                }
+            )
             return 0
         for ch in summary:
             width = 20
@@ -394,13 +449,21 @@ def cmd_validate(args: argparse.Namespace, out: Out) -> int:
     root = course_root(args.path or args.course)
     report = validate_course(root, variants_per_exercise=args.variants)
     if args.json:
-        out.json({"ok": report.ok, "exercises": report.exercises, "variants": report.variants,
-                  "problems": [str(p) for p in report.problems]})
+        out.json(
+            {
+                "ok": report.ok,
+                "exercises": report.exercises,
+                "variants": report.variants,
+                "problems": [str(p) for p in report.problems],
+            }
+        )
     else:
         for p in report.problems:
             out.line(str(p))
-        summary = (f"{report.exercises} exercises, {report.variants} variants checked: "
-                   f"{len(report.problems)} problem{'s' if len(report.problems) != 1 else ''}")
+        summary = (
+            f"{report.exercises} exercises, {report.variants} variants checked: "
+            f"{len(report.problems)} problem{'s' if len(report.problems) != 1 else ''}"
+        )
         out.line(out.style(summary, "bold", "green" if report.ok else "red"))
     return 0 if report.ok else 1
 
@@ -417,20 +480,31 @@ def cmd_doctor(args: argparse.Namespace, out: Out) -> int:
     from slamcourse.workspace import workspace_dir
 
     report = probe_isolation()
-    info = {"slamcourse": __version__, "python": platform.python_version(),
-            "numpy": numpy.__version__, "platform": platform.platform(),
-            "isolation": report.level, "isolation_reason": report.reason,
-            "course": str(course_root(args.course)), "home": str(default_home()),
-            "workspace": str(workspace_dir())}
+    info = {
+        "slamcourse": __version__,
+        "python": platform.python_version(),
+        "numpy": numpy.__version__,
+        "platform": platform.platform(),
+        "isolation": report.level,
+        "isolation_reason": report.reason,
+        "course": str(course_root(args.course)),
+        "home": str(default_home()),
+        "workspace": str(workspace_dir()),
+    }
     if args.json:
         out.json(info)
         return 0
     for key, value in info.items():
         out.line(f"{key + ':':<18} {value}")
     if report.level != "namespaces":
-        out.line(out.style("Learner code runs with resource limits only (no namespaces): fine "
-                           "for practice on your own machine; CI grading passes "
-                           "--require-isolation and refuses this.", "yellow"))
+        out.line(
+            out.style(
+                "Learner code runs with resource limits only (no namespaces): fine "
+                "for practice on your own machine; CI grading passes "
+                "--require-isolation and refuses this.",
+                "yellow",
+            )
+        )
     return 0
 
 
@@ -440,7 +514,7 @@ def cmd_watch(args: argparse.Namespace, out: Out) -> int:
 
     with _engine(args) as engine:
         exercise_id = _target(engine, args.exercise)
-        path, fresh = engine.code_file(exercise_id)
+        path, _ = engine.code_file(exercise_id)
         out.line(f"Watching {out.style(str(path), 'bold')} ({exercise_id}); Ctrl-C to stop.")
         while True:
             verdict = engine.check_code(exercise_id, path)
@@ -458,24 +532,31 @@ def cmd_watch(args: argparse.Namespace, out: Out) -> int:
 
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
-        prog="slamcourse", description="Learn classical SLAM by computing it: exercises with "
-        "instant feedback, graded against numpy reference code.")
+        prog="slamcourse",
+        description="Learn classical SLAM by computing it: exercises with "
+        "instant feedback, graded against numpy reference code.",
+    )
     parser.add_argument("--version", action="version", version=f"slamcourse {__version__}")
-    parser.add_argument("--course", metavar="PATH", help="use the course at PATH instead of the "
-                        "bundled one (or set SLAMCOURSE_COURSE)")
+    parser.add_argument(
+        "--course",
+        metavar="PATH",
+        help="use the course at PATH instead of the bundled one (or set SLAMCOURSE_COURSE)",
+    )
     parser.add_argument("--no-color", action="store_true", help="plain output (also NO_COLOR=1)")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
 
-    def add(name: str, fn: Callable[[argparse.Namespace, Out], int], help_: str,
-            **kw: Any) -> argparse.ArgumentParser:
+    def add(
+        name: str, fn: Callable[[argparse.Namespace, Out], int], help_: str, **kw: Any
+    ) -> argparse.ArgumentParser:
         p = sub.add_parser(name, help=help_, description=help_, **kw)
         p.set_defaults(func=fn)
         return p
 
     def variant_opts(p: argparse.ArgumentParser) -> None:
         group = p.add_mutually_exclusive_group()
-        group.add_argument("--canonical", action="store_true",
-                           help="the lesson's own numbers (variant 0)")
+        group.add_argument(
+            "--canonical", action="store_true", help="the lesson's own numbers (variant 0)"
+        )
         group.add_argument("--seed", type=int, metavar="S", help="variant S (0 = canonical)")
 
     p = add("next", cmd_next, "pose the next open exercise and grade answers interactively")
@@ -483,10 +564,16 @@ def build_parser() -> argparse.ArgumentParser:
     p = add("check", cmd_check, "grade one answer (exit 0 passed, 1 not passed, 2 usage)")
     p.add_argument("exercise", metavar="ID")
     p.add_argument("--answer", metavar="TEXT", help="the answer, e.g. 0.25, 7/5, [0.3, -0.09]")
-    p.add_argument("--file", metavar="PATH", help="code exercises: grade this file (default: "
-                   "your workspace file)")
-    p.add_argument("--require-isolation", action="store_true", help="code exercises: refuse to "
-                   "grade without namespace isolation (CI)")
+    p.add_argument(
+        "--file",
+        metavar="PATH",
+        help="code exercises: grade this file (default: your workspace file)",
+    )
+    p.add_argument(
+        "--require-isolation",
+        action="store_true",
+        help="code exercises: refuse to grade without namespace isolation (CI)",
+    )
     p.add_argument("--json", action="store_true", help="machine-readable verdict")
     p.add_argument("--no-record", action="store_true", help="do not record the attempt")
     variant_opts(p)
@@ -519,8 +606,13 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--json", action="store_true")
     p = add("validate", cmd_validate, "prove a course sound (reference, variants, misconceptions)")
     p.add_argument("path", metavar="COURSE", nargs="?", help="course folder (default: bundled)")
-    p.add_argument("--variants", type=int, default=25, metavar="N",
-                   help="random variants per exercise (default 25)")
+    p.add_argument(
+        "--variants",
+        type=int,
+        default=25,
+        metavar="N",
+        help="random variants per exercise (default 25)",
+    )
     p.add_argument("--json", action="store_true")
     return parser
 

@@ -47,15 +47,21 @@ class Hint:
 class Engine:
     """A course plus (optionally) a learner's progress."""
 
-    def __init__(self, course: Course, progress: Progress | None = None, *,
-                 pool: WorkerPool | None = None) -> None:
+    def __init__(
+        self, course: Course, progress: Progress | None = None, *, pool: WorkerPool | None = None
+    ) -> None:
         self.course = course
         self.progress = progress
         self.pool = pool  # a long-running engine keeps a sandbox worker ready for code checks
 
     @classmethod
-    def open(cls, course_path: str | Path | None = None, *, with_progress: bool = True,
-             progress_path: Path | None = None) -> Engine:
+    def open(
+        cls,
+        course_path: str | Path | None = None,
+        *,
+        with_progress: bool = True,
+        progress_path: Path | None = None,
+    ) -> Engine:
         course = load_course(course_root(course_path))
         progress = Progress.open(progress_path) if with_progress else None
         return cls(course, progress)
@@ -76,8 +82,9 @@ class Engine:
     def exercise(self, exercise_id: str) -> ExerciseSpec:
         return self.course.exercise(exercise_id)
 
-    def variant(self, exercise_id: str, *, canonical: bool = False,
-                seed: int | None = None) -> Variant:
+    def variant(
+        self, exercise_id: str, *, canonical: bool = False, seed: int | None = None
+    ) -> Variant:
         """The learner's own variant, or the canonical one (0), or variant ``seed``."""
         spec = self.exercise(exercise_id)
         if seed is not None and seed < 0:
@@ -100,10 +107,16 @@ class Engine:
         extra = kind.extra(spec, variant)
         chapter = self.course.chapter_of(exercise_id)
         index = chapter.exercises.index(exercise_id) + 1
-        return Prompt(exercise_id, spec.title, spec.kind, chapter.title,
-                      (index, len(chapter.exercises)), variant,
-                      text + ("\n\n" + extra if extra else ""),
-                      kind.how_to_answer(spec, variant))
+        return Prompt(
+            exercise_id,
+            spec.title,
+            spec.kind,
+            chapter.title,
+            (index, len(chapter.exercises)),
+            variant,
+            text + ("\n\n" + extra if extra else ""),
+            kind.how_to_answer(spec, variant),
+        )
 
     def context(self, exercise_id: str) -> str:
         """The chapter prose that leads up to this exercise (Markdown)."""
@@ -113,20 +126,24 @@ class Engine:
                 return prose.strip()
         return ""
 
-    def check(self, exercise_id: str, answer: str, variant: Variant, *,
-              record: bool = True) -> Verdict:
+    def check(
+        self, exercise_id: str, answer: str, variant: Variant, *, record: bool = True
+    ) -> Verdict:
         """Grade ``answer``; record the attempt in the learner's progress when there is one."""
         spec = self.exercise(exercise_id)
         if spec.kind == "code":
-            raise UsageError(f"{exercise_id} is a code exercise: grade a file with "
-                             f"`slamcourse check {exercise_id} --file PATH`")
+            raise UsageError(
+                f"{exercise_id} is a code exercise: grade a file with "
+                f"`slamcourse check {exercise_id} --file PATH`"
+            )
         verdict = get_kind(spec.kind).check(spec, variant, answer)
         if record and self.progress is not None:
             self.progress.record_attempt(exercise_id, variant.seed, answer, verdict)
         return verdict
 
-    def check_code(self, exercise_id: str, path: Path, *, require_isolation: bool = False,
-                   record: bool = True) -> Verdict:
+    def check_code(
+        self, exercise_id: str, path: Path, *, require_isolation: bool = False, record: bool = True
+    ) -> Verdict:
         """Grade the learner's file ``path`` for a code exercise (sandboxed)."""
         import hashlib
 
@@ -137,8 +154,9 @@ class Engine:
             raise UsageError(f"{exercise_id} is a {spec.kind} exercise: answer it with --answer")
         source = read_source(path)
         worker = self.pool.take() if self.pool is not None else None
-        verdict = get_kind("code").check_source(  # type: ignore[attr-defined]
-            spec, source, path.name, require_isolation=require_isolation, worker=worker)
+        verdict: Verdict = get_kind("code").check_source(  # type: ignore[attr-defined]
+            spec, source, path.name, require_isolation=require_isolation, worker=worker
+        )
         if record and self.progress is not None:
             digest = hashlib.sha256(source.encode("utf-8", "replace")).hexdigest()[:16]
             self.progress.record_attempt(exercise_id, 0, f"{path} sha256:{digest}", verdict)
@@ -171,8 +189,11 @@ class Engine:
 
     def _open_ids(self) -> list[str]:
         states = self._store().states()
-        return [e for e in self.course.exercise_ids
-                if states.get(e) is None or states[e].status == "pending"]
+        return [
+            e
+            for e in self.course.exercise_ids
+            if states.get(e) is None or states[e].status == "pending"
+        ]
 
     def next_exercise(self) -> str | None:
         """The pinned exercise if still open, else the first open one after it (wrapping)."""
@@ -185,7 +206,7 @@ class Engine:
         order = self.course.exercise_ids
         if current in order:
             start = order.index(current)
-            for ex in order[start + 1:] + order[:start]:
+            for ex in order[start + 1 :] + order[:start]:
                 if ex in open_ids:
                     return ex
         return open_ids[0]
@@ -199,7 +220,7 @@ class Engine:
         order = self.course.exercise_ids
         open_ids = [e for e in self._open_ids() if e != exercise_id]
         start = order.index(exercise_id) if exercise_id in order else -1
-        for ex in order[start + 1:] + order[:start + 1]:
+        for ex in order[start + 1 :] + order[: start + 1]:
             if ex in open_ids:
                 self._store().set_current(ex)
                 return ex
@@ -239,8 +260,22 @@ class Engine:
             rows = []
             for ex in ch.exercises:
                 st = states.get(ex)
-                rows.append({"id": ex, "status": st.status if st else "pending",
-                             "attempts": st.attempts if st else 0, "current": ex == current})
-            out.append({"id": ch.id, "title": ch.title, "number": ch.number, "exercises": rows,
-                        "solved": sum(r["status"] == "solved" for r in rows), "total": len(rows)})
+                rows.append(
+                    {
+                        "id": ex,
+                        "status": st.status if st else "pending",
+                        "attempts": st.attempts if st else 0,
+                        "current": ex == current,
+                    }
+                )
+            out.append(
+                {
+                    "id": ch.id,
+                    "title": ch.title,
+                    "number": ch.number,
+                    "exercises": rows,
+                    "solved": sum(r["status"] == "solved" for r in rows),
+                    "total": len(rows),
+                }
+            )
         return out

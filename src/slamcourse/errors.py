@@ -3,7 +3,8 @@
 Library code raises these and never prints or exits; only :func:`slamcourse.cli.main` catches
 them, prints ``Error: …`` to stderr and exits with the error's ``exit_code``.
 
-A learner's mistake is never an exception: checkers turn it into a :class:`~slamcourse.verdict.Verdict`.
+A learner's mistake is never an exception: checkers turn it into a
+:class:`~slamcourse.verdict.Verdict`.
 """
 
 from __future__ import annotations
@@ -83,7 +84,10 @@ class ProgressError(SlamcourseError):
 
 
 class GraderError(SlamcourseError):
-    """The grader itself failed (not the learner): a bug or a broken installation. Say so as such."""
+    """The grader itself failed (not the learner): a bug or a broken installation.
+
+    Said as such to the learner; no attempt is counted.
+    """
 
     exit_code = EXIT_GRADER
 

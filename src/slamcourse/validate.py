@@ -26,8 +26,9 @@ class Report:
         return not self.problems
 
 
-def validate_course(root: Path, *, variants_per_exercise: int = 25,
-                    progress: Callable[[str], None] | None = None) -> Report:
+def validate_course(
+    root: Path, *, variants_per_exercise: int = 25, progress: Callable[[str], None] | None = None
+) -> Report:
     """Load every chapter and exercise of the course at ``root`` and check each one."""
     course = load_course(root)
     report = Report(list(course.problems))
@@ -35,9 +36,15 @@ def validate_course(root: Path, *, variants_per_exercise: int = 25,
     for path in sorted((root / "exercises").glob("*/*.yaml")):
         ex_id = f"{path.parent.name}/{path.stem}"
         if ex_id not in placed:
-            report.problems.append(Problem(relpath(path, root), 1, f"exercise '{ex_id}' is not "
-                                           "placed in any chapter; add a ```{exercise} "
-                                           f"{ex_id} block to its chapter"))
+            report.problems.append(
+                Problem(
+                    relpath(path, root),
+                    1,
+                    f"exercise '{ex_id}' is not "
+                    "placed in any chapter; add a ```{exercise} "
+                    f"{ex_id} block to its chapter",
+                )
+            )
             continue
         if progress:
             progress(ex_id)
@@ -45,8 +52,9 @@ def validate_course(root: Path, *, variants_per_exercise: int = 25,
     return report
 
 
-def validate_exercise(course: Course, exercise_id: str, count: int,
-                      report: Report | None = None) -> list[Problem]:
+def validate_exercise(
+    course: Course, exercise_id: str, count: int, report: Report | None = None
+) -> list[Problem]:
     """Problems of one exercise over the canonical variant and ``count`` random ones."""
     try:
         spec = course.exercise(exercise_id)

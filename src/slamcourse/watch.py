@@ -22,8 +22,9 @@ def _signature(path: Path) -> tuple[int, int] | None:
     return st.st_mtime_ns, st.st_size
 
 
-def wait_for_change(path: Path, *, poll: bool = False, interval: float = 0.5,
-                    timeout: float | None = None) -> str:
+def wait_for_change(
+    path: Path, *, poll: bool = False, interval: float = 0.5, timeout: float | None = None
+) -> str:
     """Block until ``path`` is written (or replaced, as editors do); returns the mechanism used
     (``inotify`` or ``polling``). With ``timeout``, returns ``timeout`` when nothing changed."""
     if not poll:
@@ -77,7 +78,7 @@ def _wait_inotify(fd: int, path: Path, timeout: float | None) -> str:
         offset = 0
         while offset + _EVENT.size <= len(data):
             _wd, _mask, _cookie, length = _EVENT.unpack_from(data, offset)
-            name = data[offset + _EVENT.size: offset + _EVENT.size + length].rstrip(b"\0")
+            name = data[offset + _EVENT.size : offset + _EVENT.size + length].rstrip(b"\0")
             offset += _EVENT.size + length
             if name == target:
                 return "inotify"

@@ -15,10 +15,10 @@ pytestmark = pytest.mark.e2e
 
 
 def spawn(home: Path, *args: str) -> pexpect.spawn:
-    env = dict(os.environ, NO_COLOR="1", TERM="dumb", COLUMNS="100",
-               SLAMCOURSE_HOME=str(home))
-    return pexpect.spawn(sys.executable, ["-m", "slamcourse", *args], env=env,
-                         encoding="utf-8", timeout=30)
+    env = dict(os.environ, NO_COLOR="1", TERM="dumb", COLUMNS="100", SLAMCOURSE_HOME=str(home))
+    return pexpect.spawn(
+        sys.executable, ["-m", "slamcourse", *args], env=env, encoding="utf-8", timeout=30
+    )
 
 
 def test_next_on_fixture_course(private_home: Path) -> None:
@@ -96,8 +96,10 @@ def test_code_exercise_in_next(private_home: Path) -> None:
     child.expect_exact("NotImplementedError")
     child.expect_exact("range_bearing.py:6")
     child.expect_exact("check> ")
-    path.write_text("import math\n\ndef range_bearing(dx, dy, theta):\n"
-                    "    return math.hypot(dx, dy), math.atan2(dy, dx) - theta\n")
+    path.write_text(
+        "import math\n\ndef range_bearing(dx, dy, theta):\n"
+        "    return math.hypot(dx, dy), math.atan2(dy, dx) - theta\n"
+    )
     child.sendline("")
     child.expect_exact("✓ passed")
     child.expect_exact("Enter for the next exercise")

@@ -29,8 +29,11 @@ def only(problems: list[str]) -> str:
 def test_unknown_key_suggests_the_nearest(course_copy: Path) -> None:
     edit(course_copy / "exercises/basics/distance.yaml", "explanation:", "explanaton:")
     found = problems_of(course_copy)
-    assert any(p.startswith("exercises/basics/distance.yaml:15: unknown key 'explanaton'")
-               and "did you mean 'explanation'" in p for p in found), found
+    assert any(
+        p.startswith("exercises/basics/distance.yaml:15: unknown key 'explanaton'")
+        and "did you mean 'explanation'" in p
+        for p in found
+    ), found
 
 
 def test_missing_reference_function(course_copy: Path) -> None:
@@ -41,10 +44,15 @@ def test_missing_reference_function(course_copy: Path) -> None:
 
 
 def test_accepted_misconception_is_reported(course_copy: Path) -> None:
-    edit(course_copy / "exercises/basics/reference.py",
-         "def count_forgot_pose(n):\n    return 2 * n", "def count_forgot_pose(n):\n    return 3 + 2 * n")
+    edit(
+        course_copy / "exercises/basics/reference.py",
+        "def count_forgot_pose(n):\n    return 2 * n",
+        "def count_forgot_pose(n):\n    return 3 + 2 * n",
+    )
     message = only(problems_of(course_copy))
-    assert message.startswith("exercises/basics/count.yaml:12: misconception 'forgot-pose' is accepted")
+    assert message.startswith(
+        "exercises/basics/count.yaml:12: misconception 'forgot-pose' is accepted"
+    )
 
 
 def test_yaml_syntax_error(course_copy: Path) -> None:
@@ -54,7 +62,11 @@ def test_yaml_syntax_error(course_copy: Path) -> None:
 
 
 def test_template_error_names_the_line(course_copy: Path) -> None:
-    edit(course_copy / "exercises/basics/distance.yaml", "{{ dy | num }})$ from", "{{ dz | num }})$ from")
+    edit(
+        course_copy / "exercises/basics/distance.yaml",
+        "{{ dy | num }})$ from",
+        "{{ dz | num }})$ from",
+    )
     message = only(problems_of(course_copy))
     assert message.startswith("exercises/basics/distance.yaml:6: template error")
     assert "dz" in message
@@ -67,12 +79,19 @@ def test_id_must_match_path(course_copy: Path) -> None:
 
 
 def test_unplaced_exercise_and_missing_file(course_copy: Path) -> None:
-    edit(course_copy / "chapters/01-basics.md", "```{exercise} basics/bug", "```{exercise} basics/bog")
+    edit(
+        course_copy / "chapters/01-basics.md",
+        "```{exercise} basics/bug",
+        "```{exercise} basics/bog",
+    )
     found = problems_of(course_copy)
-    assert any(p.startswith("chapters/01-basics.md:38: exercise 'basics/bog' has no file")
-               for p in found), found
-    assert any(p.startswith("exercises/basics/bug.yaml:1: exercise 'basics/bug' is not placed")
-               for p in found), found
+    assert any(
+        p.startswith("chapters/01-basics.md:38: exercise 'basics/bog' has no file") for p in found
+    ), found
+    assert any(
+        p.startswith("exercises/basics/bug.yaml:1: exercise 'basics/bug' is not placed")
+        for p in found
+    ), found
 
 
 def test_newer_format_is_refused(course_copy: Path) -> None:
@@ -87,11 +106,15 @@ def test_duplicate_key(course_copy: Path) -> None:
 
 
 def test_reference_that_raises(course_copy: Path) -> None:
-    edit(course_copy / "exercises/basics/reference.py", "return math.hypot(dx, dy)",
-         "return math.hypot(dx, dy) / 0")
+    edit(
+        course_copy / "exercises/basics/reference.py",
+        "return math.hypot(dx, dy)",
+        "return math.hypot(dx, dy) / 0",
+    )
     message = only(problems_of(course_copy))
-    assert message.startswith("exercises/basics/reference.py:9: distance(dx=3, dy=4) raised "
-                              "ZeroDivisionError")
+    assert message.startswith(
+        "exercises/basics/reference.py:9: distance(dx=3, dy=4) raised ZeroDivisionError"
+    )
 
 
 def test_unsatisfiable_require(course_copy: Path) -> None:

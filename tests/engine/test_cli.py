@@ -22,8 +22,9 @@ def run(capsys: pytest.CaptureFixture[str], *argv: str) -> tuple[int, str, str]:
 def test_check_exit_codes_and_json(capsys: pytest.CaptureFixture[str]) -> None:
     code, out, _ = run(capsys, "check", "basics/distance", "--answer", "5", "--canonical")
     assert code == 0 and "passed" in out
-    code, out, _ = run(capsys, "check", "basics/distance", "--answer", "25", "--canonical",
-                       "--json")
+    code, out, _ = run(
+        capsys, "check", "basics/distance", "--answer", "25", "--canonical", "--json"
+    )
     data = json.loads(out)
     assert code == 1
     assert data["verdict"]["status"] == "failed"
@@ -66,8 +67,9 @@ def test_progress_commands(capsys: pytest.CaptureFixture[str], private_home: Pat
     assert (private_home / "progress.sqlite3").is_file()
 
 
-def test_validate_reports_broken_course(capsys: pytest.CaptureFixture[str],
-                                        course_copy: Path) -> None:
+def test_validate_reports_broken_course(
+    capsys: pytest.CaptureFixture[str], course_copy: Path
+) -> None:
     path = course_copy / "exercises/basics/count.yaml"
     path.write_text(path.read_text().replace("exact: true", "exakt: true"))
     code = main(["validate", str(course_copy), "--variants", "3"])
@@ -77,8 +79,9 @@ def test_validate_reports_broken_course(capsys: pytest.CaptureFixture[str],
     assert main(["validate", str(FIXTURE_COURSE), "--variants", "3"]) == 0
 
 
-def test_corrupt_progress_is_a_clear_error(capsys: pytest.CaptureFixture[str],
-                                           private_home: Path) -> None:
+def test_corrupt_progress_is_a_clear_error(
+    capsys: pytest.CaptureFixture[str], private_home: Path
+) -> None:
     db = private_home / "progress.sqlite3"
     db.write_bytes(b"not a database" * 100)
     code, _, err = run(capsys, "status")

@@ -52,16 +52,29 @@ def test_correct_implementations_pass(source: str) -> None:
 @pytest.mark.parametrize(
     ("source", "misconception", "words"),
     [
-        ("import math\ndef range_bearing(dx, dy, theta):\n"
-         "    return dx*dx + dy*dy, math.atan2(dy, dx) - theta\n", "squared", "square root"),
-        ("import math\ndef range_bearing(dx, dy, theta):\n"
-         "    return math.hypot(dx, dy), math.atan2(dy, dx)\n", "no-heading", "subtract theta"),
-        ("import math\ndef range_bearing(dx, dy, theta):\n"
-         "    return math.hypot(dx, dy), math.atan(dy / dx) - theta\n", None, "expected"),
+        (
+            "import math\ndef range_bearing(dx, dy, theta):\n"
+            "    return dx*dx + dy*dy, math.atan2(dy, dx) - theta\n",
+            "squared",
+            "square root",
+        ),
+        (
+            "import math\ndef range_bearing(dx, dy, theta):\n"
+            "    return math.hypot(dx, dy), math.atan2(dy, dx)\n",
+            "no-heading",
+            "subtract theta",
+        ),
+        (
+            "import math\ndef range_bearing(dx, dy, theta):\n"
+            "    return math.hypot(dx, dy), math.atan(dy / dx) - theta\n",
+            None,
+            "expected",
+        ),
     ],
 )
-def test_wrong_implementations_fail_with_minimal_input(source: str, misconception: str | None,
-                                                       words: str) -> None:
+def test_wrong_implementations_fail_with_minimal_input(
+    source: str, misconception: str | None, words: str
+) -> None:
     verdict = grade(source)
     assert verdict.status == "failed"
     assert verdict.misconception == misconception
@@ -71,8 +84,10 @@ def test_wrong_implementations_fail_with_minimal_input(source: str, misconceptio
 
 
 def test_learner_traceback_is_trimmed_to_their_file() -> None:
-    verdict = grade("def helper(x):\n    return 1 / x\n\ndef range_bearing(dx, dy, theta):\n"
-                    "    return helper(0), 0\n")
+    verdict = grade(
+        "def helper(x):\n    return 1 / x\n\ndef range_bearing(dx, dy, theta):\n"
+        "    return helper(0), 0\n"
+    )
     assert verdict.status == "failed"
     assert "ZeroDivisionError" in verdict.feedback
     assert "attempt.py:2: return 1 / x" in verdict.feedback
@@ -89,13 +104,22 @@ def test_learner_traceback_is_trimmed_to_their_file() -> None:
         ("range_bearing = 3\n", "invalid", "not a function"),
         ("raise ValueError('at import')\n", "failed", "raised while it was loaded"),
         ("def range_bearing(dx, dy, theta):\n    while True:\n        pass\n", "timeout", "loop"),
-        ("import sys\ndef range_bearing(dx, dy, theta):\n    sys.exit(0)\n", "failed",
-         "stopped the grader's worker"),
+        (
+            "import sys\ndef range_bearing(dx, dy, theta):\n    sys.exit(0)\n",
+            "failed",
+            "stopped the grader's worker",
+        ),
         ("def range_bearing(dx, dy, theta):\n    return {'r': 1}\n", "failed", "unsupported"),
-        ("def range_bearing(dx, dy, theta):\n    return float('nan'), 0.0\n", "failed",
-         "not a finite number"),
-        ("def range_bearing(dx, dy, theta):\n    print('PASSED')\n    return None\n", "failed",
-         "forget to return"),
+        (
+            "def range_bearing(dx, dy, theta):\n    return float('nan'), 0.0\n",
+            "failed",
+            "not a finite number",
+        ),
+        (
+            "def range_bearing(dx, dy, theta):\n    print('PASSED')\n    return None\n",
+            "failed",
+            "forget to return",
+        ),
     ],
 )
 def test_every_outcome_is_a_verdict(source: str, status: str, words: str) -> None:
@@ -105,16 +129,19 @@ def test_every_outcome_is_a_verdict(source: str, status: str, words: str) -> Non
 
 
 def test_grading_is_deterministic() -> None:
-    source = ("import math\ndef range_bearing(dx, dy, theta):\n"
-              "    return math.hypot(dx, dy) + (0.1 if dx > 7 else 0), math.atan2(dy, dx) - theta\n")
+    source = (
+        "import math\ndef range_bearing(dx, dy, theta):\n"
+        "    return math.hypot(dx, dy) + (0.1 if dx > 7 else 0), math.atan2(dy, dx) - theta\n"
+    )
     first, second = grade(source), grade(source)
     assert first.status == second.status == "failed"
     assert first.details["input"] == second.details["input"]
     assert first.details["seed"] == second.details["seed"]
 
 
-def test_cli_check_file_and_workspace(capsys: pytest.CaptureFixture[str], tmp_path: Path,
-                                      private_home: Path) -> None:
+def test_cli_check_file_and_workspace(
+    capsys: pytest.CaptureFixture[str], tmp_path: Path, private_home: Path
+) -> None:
     course = ["--course", str(FIXTURE_COURSE)]
     attempt = tmp_path / "mine.py"
     attempt.write_text(CORRECT["math.hypot, unwrapped"])
@@ -136,9 +163,13 @@ def test_validator_runs_solution_starter_and_misconceptions(course_copy: Path) -
     solution = course_copy / "exercises/basics/solutions/range_bearing.py"
     solution.write_text(solution.read_text().replace("math.hypot(dx, dy)", "dx"))
     ref = course_copy / "exercises/basics/reference.py"
-    ref.write_text(ref.read_text().replace("return (math.hypot(dx, dy), math.atan2(dy, dx))",
-                                           "return range_bearing(dx, dy, theta)"))
-    problems = [str(p) for p in validate_exercise(load_course(course_copy),
-                                                  "basics/range-bearing", 1)]
+    ref.write_text(
+        ref.read_text().replace(
+            "return (math.hypot(dx, dy), math.atan2(dy, dx))", "return range_bearing(dx, dy, theta)"
+        )
+    )
+    problems = [
+        str(p) for p in validate_exercise(load_course(course_copy), "basics/range-bearing", 1)
+    ]
     assert any("the solution range_bearing.py fails" in p for p in problems), problems
     assert any("misconception 'no-heading' passes every test input" in p for p in problems)

@@ -82,8 +82,9 @@ def test_fixture_course_validates() -> None:
         ("basics/bug", "7", "invalid", None, "lines 1 to 3"),
     ],
 )
-def test_outcomes(engine: Engine, exercise: str, answer: str, status: str,
-                  misconception: str | None, words: str) -> None:
+def test_outcomes(
+    engine: Engine, exercise: str, answer: str, status: str, misconception: str | None, words: str
+) -> None:
     verdict = grade(engine, exercise, answer)
     assert verdict.status == status, verdict.feedback
     assert verdict.misconception == misconception

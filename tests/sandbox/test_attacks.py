@@ -84,7 +84,7 @@ def test_infinite_loop_in_call(make_worker: MakeWorker) -> None:
     result = worker.call([])
     assert result.status == "timeout"
     assert "did not finish within 1 s" in result.error
-    assert time.monotonic() - started < 3
+    assert time.monotonic() - started < 4
     proc = worker._res.proc
     assert proc is not None and proc.returncode is not None  # gone, reaped
     again = worker.call([])

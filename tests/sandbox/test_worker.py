@@ -314,7 +314,7 @@ def test_prestarted_worker(level: str) -> None:
         time.sleep(0.5)
         started = time.monotonic()
         assert worker.load("def f():\n    return 1\n", "f.py", "f").ok
-        assert time.monotonic() - started < 0.3
+        assert time.monotonic() - started < 1.0
         assert worker.startup_seconds is not None and worker.startup_seconds < 5
 
 

@@ -30,9 +30,19 @@ _DIRECTIVE = re.compile(r"^(?P<fence>`{3,}|~{3,})\s*\{exercise\}\s*(?P<id>\S*)\s
 _FRONT = re.compile(r"\A---[ \t]*\n(?P<body>.*?\n)---[ \t]*(?:\n|\Z)", re.S)
 
 COMMON_KEYS = {
-    "format": True, "id": True, "kind": True, "title": True, "prompt": True,
-    "explanation": True, "parameters": False, "require": False, "reference": False,
-    "tolerance": False, "hints": False, "misconceptions": False, "tags": False,
+    "format": True,
+    "id": True,
+    "kind": True,
+    "title": True,
+    "prompt": True,
+    "explanation": True,
+    "parameters": False,
+    "require": False,
+    "reference": False,
+    "tolerance": False,
+    "hints": False,
+    "misconceptions": False,
+    "tags": False,
 }
 CHAPTER_KEYS = {"id": True, "title": True, "summary": False}
 
@@ -62,7 +72,9 @@ class Course:
         for ch in self.chapters:
             if ch.id == chapter_id:
                 return ch
-        raise UsageError(f"no chapter '{chapter_id}'{suggest(chapter_id, [c.id for c in self.chapters])}")
+        raise UsageError(
+            f"no chapter '{chapter_id}'{suggest(chapter_id, [c.id for c in self.chapters])}"
+        )
 
     def chapter_of(self, exercise_id: str) -> Chapter:
         for ch in self.chapters:
@@ -87,8 +99,10 @@ class Course:
 
     def _unknown(self, exercise_id: str) -> UsageError:
         hint = suggest(exercise_id, self.exercise_ids)
-        return UsageError(f"no exercise '{exercise_id}' in this course{hint} "
-                          "(slamcourse list shows every exercise id)")
+        return UsageError(
+            f"no exercise '{exercise_id}' in this course{hint} "
+            "(slamcourse list shows every exercise id)"
+        )
 
 
 def load_course(root: Path) -> Course:
@@ -105,8 +119,14 @@ def load_course(root: Path) -> Course:
             continue
         rel = relpath(path, root)
         if chapter.id in seen:
-            problems.append(Problem(rel, 2, f"chapter id '{chapter.id}' is also used by "
-                                    f"{seen[chapter.id]}; chapter ids must be unique"))
+            problems.append(
+                Problem(
+                    rel,
+                    2,
+                    f"chapter id '{chapter.id}' is also used by "
+                    f"{seen[chapter.id]}; chapter ids must be unique",
+                )
+            )
             continue
         seen[chapter.id] = rel
         chapters.append(chapter)
@@ -116,13 +136,24 @@ def load_course(root: Path) -> Course:
         for ex_id in list(chapter.exercises):
             line = chapter.exercise_lines[ex_id]
             if ex_id in placed:
-                problems.append(Problem(rel, line, f"exercise '{ex_id}' is already placed in "
-                                        f"{placed[ex_id]}; place each exercise once"))
+                problems.append(
+                    Problem(
+                        rel,
+                        line,
+                        f"exercise '{ex_id}' is already placed in "
+                        f"{placed[ex_id]}; place each exercise once",
+                    )
+                )
                 chapter.exercises.remove(ex_id)
             placed[ex_id] = rel
     if not files:
-        problems.append(Problem(relpath(root / "chapters", root), None,
-                                "no chapters: add chapters/01-<id>.md (see docs/authoring.md)"))
+        problems.append(
+            Problem(
+                relpath(root / "chapters", root),
+                None,
+                "no chapters: add chapters/01-<id>.md (see docs/authoring.md)",
+            )
+        )
     return Course(root, chapters, problems)
 
 
@@ -133,34 +164,57 @@ def _index_chapter(path: Path, root: Path, number: int, problems: list[Problem])
     match = _FRONT.match(text)
     fallback = re.sub(r"^\d+-", "", path.stem)
     if not match:
-        raise CourseError(Problem(rel, 1, "missing front matter: start the file with '---', "
-                                  "'id: <chapter-id>', 'title: <title>', '---'"))
+        raise CourseError(
+            Problem(
+                rel,
+                1,
+                "missing front matter: start the file with '---', "
+                "'id: <chapter-id>', 'title: <title>', '---'",
+            )
+        )
     meta = load_yaml(match.group("body"), rel, first_line=2)
     if not isinstance(meta, LineDict):
         raise CourseError(Problem(rel, 2, "front matter must be 'key: value' lines"))
     check.keys(meta, CHAPTER_KEYS, [k for k, req in CHAPTER_KEYS.items() if req], "front matter")
     chapter_id = check.typed(meta, "id", str, fallback)
     if not _ID.match(chapter_id):
-        check.add(meta.line_of("id"), f"chapter id '{chapter_id}' must be lowercase words "
-                  "joined by '-' (e.g. 'observation-model')")
-    chapter = Chapter(chapter_id, check.typed(meta, "title", str, fallback), path, number,
-                      check.typed(meta, "summary", str, ""))
+        check.add(
+            meta.line_of("id"),
+            f"chapter id '{chapter_id}' must be lowercase words "
+            "joined by '-' (e.g. 'observation-model')",
+        )
+    chapter = Chapter(
+        chapter_id,
+        check.typed(meta, "title", str, fallback),
+        path,
+        number,
+        check.typed(meta, "summary", str, ""),
+    )
     for lineno, line in enumerate(text.splitlines(), start=1):
         found = _DIRECTIVE.match(line)
         if not found:
             continue
         ex_id = found.group("id")
         if not ex_id:
-            check.add(lineno, "exercise directive without an id: write ```{exercise} "
-                      f"{chapter_id}/<exercise-slug>")
+            check.add(
+                lineno,
+                "exercise directive without an id: write ```{exercise} "
+                f"{chapter_id}/<exercise-slug>",
+            )
         elif not ex_id.startswith(chapter_id + "/"):
-            check.add(lineno, f"exercise '{ex_id}' placed in chapter '{chapter_id}': exercise "
-                      f"ids of this chapter start with '{chapter_id}/'")
+            check.add(
+                lineno,
+                f"exercise '{ex_id}' placed in chapter '{chapter_id}': exercise "
+                f"ids of this chapter start with '{chapter_id}/'",
+            )
         elif not (root / "exercises" / f"{ex_id}.yaml").is_file():
             check.add(lineno, f"exercise '{ex_id}' has no file exercises/{ex_id}.yaml")
         elif ex_id in chapter.exercise_lines:
-            check.add(lineno, f"exercise '{ex_id}' is placed twice in this chapter "
-                      f"(first at line {chapter.exercise_lines[ex_id]})")
+            check.add(
+                lineno,
+                f"exercise '{ex_id}' is placed twice in this chapter "
+                f"(first at line {chapter.exercise_lines[ex_id]})",
+            )
         else:
             chapter.exercises.append(ex_id)
             chapter.exercise_lines[ex_id] = lineno
@@ -175,7 +229,7 @@ def chapter_segments(chapter: Chapter) -> list[tuple[str | None, str]]:
     """
     text = chapter.path.read_text(encoding="utf-8")
     match = _FRONT.match(text)
-    body = text[match.end():] if match else text
+    body = text[match.end() :] if match else text
     segments: list[tuple[str | None, str]] = []
     buf: list[str] = []
     fence: str | None = None
@@ -206,24 +260,36 @@ def load_exercise(path: Path, root: Path) -> ExerciseSpec:
     raw = load_yaml(path.read_text(encoding="utf-8"), rel)
     check = Checker(rel)
     if not isinstance(raw, LineDict):
-        raise CourseError(Problem(rel, 1, "an exercise file must be a mapping of 'key: value' lines"))
+        raise CourseError(
+            Problem(rel, 1, "an exercise file must be a mapping of 'key: value' lines")
+        )
     version = raw.get("format")
     if version is None:
         check.add(raw.line, f"missing 'format: {FORMAT_VERSION}' (the exercise format version)")
     elif not isinstance(version, int) or isinstance(version, bool) or version < 1:
-        check.add(raw.line_of("format"), f"'format' must be a whole number such as {FORMAT_VERSION}")
+        check.add(
+            raw.line_of("format"), f"'format' must be a whole number such as {FORMAT_VERSION}"
+        )
     elif version > FORMAT_VERSION:
-        raise CourseError(Problem(rel, raw.line_of("format"),
-                                  f"format {version} is newer than this slamcourse understands "
-                                  f"(up to {FORMAT_VERSION}); upgrade slamcourse"))
+        raise CourseError(
+            Problem(
+                rel,
+                raw.line_of("format"),
+                f"format {version} is newer than this slamcourse understands "
+                f"(up to {FORMAT_VERSION}); upgrade slamcourse",
+            )
+        )
     kind_name = check.typed(raw, "kind", str, "")
     kind = None
     if kind_name:
         if kind_name in kind_names():
             kind = get_kind(kind_name)
         else:
-            check.add(raw.line_of("kind"), f"unknown kind '{kind_name}'{suggest(kind_name, kind_names())}"
-                      f" (kinds: {', '.join(kind_names())})")
+            check.add(
+                raw.line_of("kind"),
+                f"unknown kind '{kind_name}'{suggest(kind_name, kind_names())}"
+                f" (kinds: {', '.join(kind_names())})",
+            )
     allowed = dict(COMMON_KEYS)
     if kind is not None:
         allowed.update(kind.keys)
@@ -233,30 +299,47 @@ def load_exercise(path: Path, root: Path) -> ExerciseSpec:
     expected_id = f"{path.parent.name}/{path.stem}"
     ex_id = check.typed(raw, "id", str, expected_id)
     if ex_id != expected_id:
-        check.add(raw.line_of("id"), f"id '{ex_id}' does not match the file's path; the id of "
-                  f"exercises/{expected_id}.yaml must be '{expected_id}'")
+        check.add(
+            raw.line_of("id"),
+            f"id '{ex_id}' does not match the file's path; the id of "
+            f"exercises/{expected_id}.yaml must be '{expected_id}'",
+        )
     slug = expected_id.split("/")[1]
     if not _ID.match(slug):
         check.add(1, f"file name '{path.name}': use lowercase words joined by '-'")
 
     spec = ExerciseSpec(
-        id=expected_id, chapter=path.parent.name, path=path, course_root=root, kind=kind_name,
+        id=expected_id,
+        chapter=path.parent.name,
+        path=path,
+        course_root=root,
+        kind=kind_name,
         title=check.typed(raw, "title", str, slug),
-        prompt=_text(raw, "prompt", check), explanation=_text(raw, "explanation", check),
-        parameters=_parameters(raw, check), require=_texts(raw, "require", check),
-        reference=check.typed(raw, "reference", str), reference_line=raw.line_of("reference"),
-        tolerance=_tolerance(raw, check), hints=_texts(raw, "hints", check),
-        misconceptions=_misconceptions(raw, check), line=raw.line,
+        prompt=_text(raw, "prompt", check),
+        explanation=_text(raw, "explanation", check),
+        parameters=_parameters(raw, check),
+        require=_texts(raw, "require", check),
+        reference=check.typed(raw, "reference", str),
+        reference_line=raw.line_of("reference"),
+        tolerance=_tolerance(raw, check),
+        hints=_texts(raw, "hints", check),
+        misconceptions=_misconceptions(raw, check),
+        line=raw.line,
         tags=tuple(str(t) for t in check.typed(raw, "tags", list, [])),
     )
     if kind is not None:
         if kind.reference_required and not spec.reference and not kind.reference_optional(raw):
-            check.add(raw.line, f"a {kind_name} exercise needs 'reference: <function name in "
-                      "reference.py>' (the answer must come from reference code)")
+            check.add(
+                raw.line,
+                f"a {kind_name} exercise needs 'reference: <function name in "
+                "reference.py>' (the answer must come from reference code)",
+            )
         spec.options = kind.parse(spec, raw, check)
     if spec.reference and not spec.reference_path.is_file():
-        check.add(spec.reference_line, f"'reference: {spec.reference}' but there is no "
-                  f"{relpath(spec.reference_path, root)}")
+        check.add(
+            spec.reference_line,
+            f"'reference: {spec.reference}' but there is no {relpath(spec.reference_path, root)}",
+        )
     if check.problems:
         raise CourseError(check.problems)
     return spec
@@ -314,18 +397,26 @@ def _parameters(raw: LineDict, check: Checker) -> tuple[ParamSpec, ...]:
         check.keys(item, {*_DISTS, "canonical", "round"}, (), f"parameter '{name}'")
         dists = [d for d in _DISTS if d in item]
         if len(dists) != 1:
-            check.add(line, f"parameter '{name}' needs exactly one of {', '.join(_DISTS)} "
-                      f"(found {', '.join(dists) or 'none'})")
+            check.add(
+                line,
+                f"parameter '{name}' needs exactly one of {', '.join(_DISTS)} "
+                f"(found {', '.join(dists) or 'none'})",
+            )
             continue
         dist = dists[0]
         arg = item[dist]
         args: tuple[Any, ...]
         if dist in ("int", "uniform"):
-            if (not isinstance(arg, list) or len(arg) != 2
-                    or not all(isinstance(a, int | float) and not isinstance(a, bool) for a in arg)
-                    or arg[0] > arg[1]):
-                check.add(item.line_of(dist), f"'{dist}' of '{name}' must be [low, high] numbers "
-                          "with low ≤ high")
+            if (
+                not isinstance(arg, list)
+                or len(arg) != 2
+                or not all(isinstance(a, int | float) and not isinstance(a, bool) for a in arg)
+                or arg[0] > arg[1]
+            ):
+                check.add(
+                    item.line_of(dist),
+                    f"'{dist}' of '{name}' must be [low, high] numbers with low ≤ high",
+                )
                 continue
             if dist == "int" and not all(isinstance(a, int) for a in arg):
                 check.add(item.line_of(dist), f"'int' range of '{name}' needs whole numbers")
@@ -344,12 +435,17 @@ def _parameters(raw: LineDict, check: Checker) -> tuple[ParamSpec, ...]:
         else:
             args = (arg,)
         if dist in ("int", "uniform", "choice") and "canonical" not in item:
-            check.add(line, f"parameter '{name}' needs 'canonical:' (its value in the lesson, "
-                      "used by variant 0)")
+            check.add(
+                line,
+                f"parameter '{name}' needs 'canonical:' (its value in the lesson, "
+                "used by variant 0)",
+            )
             continue
         if "canonical" in item and dist in ("value", "expr"):
-            check.add(item.line_of("canonical"), f"parameter '{name}' is fixed by '{dist}'; "
-                      "remove 'canonical'")
+            check.add(
+                item.line_of("canonical"),
+                f"parameter '{name}' is fixed by '{dist}'; remove 'canonical'",
+            )
         rounding = check.typed(item, "round", int)
         specs.append(ParamSpec(name, line, dist, args, item.get("canonical"), rounding))
     return tuple(specs)
@@ -364,13 +460,21 @@ def _misconceptions(raw: LineDict, check: Checker) -> tuple[Misconception, ...]:
         data = check.mapping(item, line, "a misconception")
         if data is None:
             continue
-        check.keys(data, {"id", "compute", "function", "message"}, ("id", "message"),
-                   "a misconception")
+        check.keys(
+            data, {"id", "compute", "function", "message"}, ("id", "message"), "a misconception"
+        )
         mid = check.typed(data, "id", str, f"misconception-{i + 1}")
         if mid in ids:
             check.add(line, f"misconception id '{mid}' is used twice")
         ids.add(mid)
         message = check.typed(data, "message", str, "")
-        out.append(Misconception(mid, Text(message, data.text_line("message")), line,
-                                 check.typed(data, "compute", str), check.typed(data, "function", str)))
+        out.append(
+            Misconception(
+                mid,
+                Text(message, data.text_line("message")),
+                line,
+                check.typed(data, "compute", str),
+                check.typed(data, "function", str),
+            )
+        )
     return tuple(out)

@@ -38,9 +38,13 @@ def module_for(spec: ExerciseSpec) -> ModuleType:
         loader_spec.loader.exec_module(module)
     except Exception as exc:
         sys.modules.pop(name, None)
-        raise CourseError(Problem(rel, _error_line(exc, path),
-                                  f"importing the reference module failed: "
-                                  f"{type(exc).__name__}: {exc}")) from None
+        raise CourseError(
+            Problem(
+                rel,
+                _error_line(exc, path),
+                f"importing the reference module failed: {type(exc).__name__}: {exc}",
+            )
+        ) from None
     _modules[key] = module
     return module
 
@@ -53,8 +57,13 @@ def function(spec: ExerciseSpec, name: str, line: int) -> Any:
         public = [n for n, v in vars(module).items() if callable(v) and not n.startswith("_")]
         from slamcourse.course.schema import suggest
 
-        raise CourseError(Problem(_rel(spec, spec.path), line,
-                                  f"reference.py has no function '{name}'{suggest(name, public)}"))
+        raise CourseError(
+            Problem(
+                _rel(spec, spec.path),
+                line,
+                f"reference.py has no function '{name}'{suggest(name, public)}",
+            )
+        )
     return fn
 
 
@@ -72,8 +81,13 @@ def call(spec: ExerciseSpec, name: str, line: int, kwargs: dict[str, Any]) -> An
             except (OSError, TypeError):
                 where = None
         args = ", ".join(f"{k}={v!r}" for k, v in kwargs.items())
-        raise CourseError(Problem(_rel(spec, spec.reference_path), where,
-                                  f"{name}({args}) raised {type(exc).__name__}: {exc}")) from None
+        raise CourseError(
+            Problem(
+                _rel(spec, spec.reference_path),
+                where,
+                f"{name}({args}) raised {type(exc).__name__}: {exc}",
+            )
+        ) from None
 
 
 def _error_line(exc: BaseException, path: Path) -> int | None:

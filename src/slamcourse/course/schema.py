@@ -9,8 +9,14 @@ from typing import Any
 from slamcourse.course.yamlio import LineDict
 from slamcourse.errors import Problem
 
-_TYPE_NAMES = {str: "text", int: "a whole number", float: "a number", bool: "true or false",
-               list: "a list", dict: "a mapping"}
+_TYPE_NAMES = {
+    str: "text",
+    int: "a whole number",
+    float: "a number",
+    bool: "true or false",
+    list: "a list",
+    dict: "a mapping",
+}
 
 
 def suggest(word: str, known: Collection[str]) -> str:
@@ -29,22 +35,27 @@ class Checker:
     def add(self, line: int | None, message: str) -> None:
         self.problems.append(Problem(self.path, line, message))
 
-    def keys(self, data: LineDict, allowed: Collection[str], required: Collection[str],
-             what: str) -> None:
+    def keys(
+        self, data: LineDict, allowed: Collection[str], required: Collection[str], what: str
+    ) -> None:
         """Report unknown keys (with the nearest known key) and missing required keys."""
         suggested = set()
         for key in data:
             if key not in allowed:
                 close = difflib.get_close_matches(key, sorted(allowed), n=1, cutoff=0.6)
                 suggested.update(close)
-                self.add(data.line_of(key), f"unknown key '{key}' in {what}{suggest(key, allowed)}"
-                         f" (known keys: {', '.join(sorted(allowed))})")
+                self.add(
+                    data.line_of(key),
+                    f"unknown key '{key}' in {what}{suggest(key, allowed)}"
+                    f" (known keys: {', '.join(sorted(allowed))})",
+                )
         for key in required:
             if key not in data and key not in suggested:
                 self.add(data.line, f"{what} is missing the required key '{key}'")
 
-    def typed(self, data: LineDict, key: str, types: type | tuple[type, ...],
-              default: Any = None) -> Any:
+    def typed(
+        self, data: LineDict, key: str, types: type | tuple[type, ...], default: Any = None
+    ) -> Any:
         """``data[key]`` if it has one of ``types``; else report it and return ``default``."""
         if key not in data:
             return default

@@ -53,8 +53,9 @@ def _plain(value: Any) -> Any:
 def _environment() -> Any:
     import jinja2
 
-    env = jinja2.Environment(undefined=jinja2.StrictUndefined, autoescape=False,
-                             keep_trailing_newline=False)
+    env = jinja2.Environment(
+        undefined=jinja2.StrictUndefined, autoescape=False, keep_trailing_newline=False
+    )
     env.filters.update(num=num, angle=angle, vec=vec, mat=mat)
     return env
 
@@ -76,8 +77,12 @@ def render(spec: ExerciseSpec, text: Text, context: dict[str, Any]) -> str:
         return str(_compile(text.source).render(**context)).strip()
     except jinja2.TemplateError as exc:
         offset = (getattr(exc, "lineno", None) or 1) - 1
-        raise CourseError(Problem(relpath(spec.path, spec.course_root), text.line + offset,
-                                  f"template error: {exc}")) from None
+        raise CourseError(
+            Problem(
+                relpath(spec.path, spec.course_root), text.line + offset, f"template error: {exc}"
+            )
+        ) from None
     except (TypeError, ValueError) as exc:  # a filter given the wrong kind of value
-        raise CourseError(Problem(relpath(spec.path, spec.course_root), text.line,
-                                  f"template error: {exc}")) from None
+        raise CourseError(
+            Problem(relpath(spec.path, spec.course_root), text.line, f"template error: {exc}")
+        ) from None

@@ -27,11 +27,21 @@ def variant(spec: ExerciseSpec, seed: int) -> Variant:
         if failed is None:
             return Variant(seed, params)
         if seed == 0:
-            raise CourseError(Problem(_rel(spec), failed.line,
-                                      f"the canonical parameters fail 'require: {failed.source}'"))
-    raise CourseError(Problem(_rel(spec), spec.require[0].line if spec.require else spec.line,
-                              f"variant {seed}: no draw in {MAX_DRAWS} satisfied 'require'; "
-                              "widen the parameter ranges or relax the requirement"))
+            raise CourseError(
+                Problem(
+                    _rel(spec),
+                    failed.line,
+                    f"the canonical parameters fail 'require: {failed.source}'",
+                )
+            )
+    raise CourseError(
+        Problem(
+            _rel(spec),
+            spec.require[0].line if spec.require else spec.line,
+            f"variant {seed}: no draw in {MAX_DRAWS} satisfied 'require'; "
+            "widen the parameter ranges or relax the requirement",
+        )
+    )
 
 
 def _draw(spec: ExerciseSpec, rng: random.Random, *, canonical: bool) -> dict[str, Any]:
@@ -41,8 +51,9 @@ def _draw(spec: ExerciseSpec, rng: random.Random, *, canonical: bool) -> dict[st
     return params
 
 
-def _value(spec: ExerciseSpec, p: ParamSpec, rng: random.Random, known: dict[str, Any],
-           canonical: bool) -> Any:
+def _value(
+    spec: ExerciseSpec, p: ParamSpec, rng: random.Random, known: dict[str, Any], canonical: bool
+) -> Any:
     if p.dist == "value":
         return p.args[0]
     if p.dist == "expr":
@@ -76,7 +87,9 @@ def _failed_requirement(spec: ExerciseSpec, params: dict[str, Any]) -> Any:
         try:
             ok = compile_expression(req.source, params.keys(), logic=True).evaluate(params)
         except AnswerFormatError as exc:
-            raise CourseError(Problem(_rel(spec), req.line, f"require '{req.source}': {exc}")) from None
+            raise CourseError(
+                Problem(_rel(spec), req.line, f"require '{req.source}': {exc}")
+            ) from None
         if not ok:
             return req
     return None

@@ -47,7 +47,7 @@ class LineList(list[Any]):
         return self.item_lines[index] if 0 <= index < len(self.item_lines) else self.line
 
 
-class _Loader(_Base):  # type: ignore[misc, valid-type]
+class _Loader(_Base):  # type: ignore[misc]
     def __init__(self, stream: str, path: str) -> None:
         super().__init__(stream)
         self.path = path
@@ -66,8 +66,12 @@ def _construct_map(loader: _Loader, node: yaml.MappingNode) -> LineDict:
             key = str(key)
         if key in data:
             loader.problems.append(
-                Problem(loader.path, line, f"duplicate key '{key}' (first at line "
-                        f"{data.key_lines[key]}); remove one of them")
+                Problem(
+                    loader.path,
+                    line,
+                    f"duplicate key '{key}' (first at line "
+                    f"{data.key_lines[key]}); remove one of them",
+                )
             )
         data[key] = loader.construct_object(value_node, deep=True)
         data.key_lines[key] = line
@@ -100,8 +104,12 @@ def load_yaml(text: str, path: str | Path, *, first_line: int = 1) -> Any:
         mark = exc.problem_mark or exc.context_mark
         line = mark.line + first_line if mark else None
         raise CourseError(
-            Problem(str(path), line, f"YAML syntax error: {exc.problem or exc.context}; check "
-                    "indentation and quote strings that contain ': ' or start with a symbol")
+            Problem(
+                str(path),
+                line,
+                f"YAML syntax error: {exc.problem or exc.context}; check "
+                "indentation and quote strings that contain ': ' or start with a symbol",
+            )
         ) from None
     except yaml.YAMLError as exc:
         raise CourseError(Problem(str(path), None, f"YAML error: {exc}")) from None

@@ -75,9 +75,18 @@ def exercise_seed(exercise_id: str) -> int:
     return int.from_bytes(hashlib.sha256(exercise_id.encode()).digest()[:4], "little")
 
 
-def run(*, strategy: Any, examples: Sequence[dict[str, Any]], signature: Sequence[str],
-        returns: Any, tolerance: Tolerance, reference: Callable[..., Any],
-        call: Callable[[Sequence[Any]], CallResult], max_examples: int, seed: int) -> Outcome:
+def run(
+    *,
+    strategy: Any,
+    examples: Sequence[dict[str, Any]],
+    signature: Sequence[str],
+    returns: Any,
+    tolerance: Tolerance,
+    reference: Callable[..., Any],
+    call: Callable[[Sequence[Any]], CallResult],
+    max_examples: int,
+    seed: int,
+) -> Outcome:
     """Run the property test; returns the outcome (never raises for learner behaviour)."""
     from hypothesis import HealthCheck, Phase, Verbosity, example, given, settings
     from hypothesis import seed as fixed_seed
@@ -94,29 +103,43 @@ def run(*, strategy: Any, examples: Sequence[dict[str, Any]], signature: Sequenc
         try:
             want = reference(**copy.deepcopy(kwargs))
         except Exception as exc:
-            raise GraderError(f"the reference failed on {kwargs}: {type(exc).__name__}: {exc}; "
-                              "the exercise's 'arguments' must exclude undefined inputs") from exc
+            raise GraderError(
+                f"the reference failed on {kwargs}: {type(exc).__name__}: {exc}; "
+                "the exercise's 'arguments' must exclude undefined inputs"
+            ) from exc
         result = call([kwargs[name] for name in signature])
         if result.status in ("timeout", "crashed", "protocol_error"):
-            raise _Fatal(Failure(kwargs, want, None, result.error, result.status,
-                                 stdout=result.stdout))
+            raise _Fatal(
+                Failure(kwargs, want, None, result.error, result.status, stdout=result.stdout)
+            )
         if result.status == "raised":
-            record(Failure(kwargs, want, None, result.error, "raised", result.frames,
-                           result.stdout))
+            record(
+                Failure(kwargs, want, None, result.error, "raised", result.frames, result.stdout)
+            )
             raise AssertionError(result.error)
         mismatch = compare(returns, result.value, want, tolerance)
         if mismatch is not None:
-            record(Failure(kwargs, want, result.value, mismatch.message, "mismatch",
-                           stdout=result.stdout))
+            record(
+                Failure(
+                    kwargs, want, result.value, mismatch.message, "mismatch", stdout=result.stdout
+                )
+            )
             raise AssertionError(mismatch.message)
 
-    test = given(strategy)(body)
+    test = given(strategy)(body)  # type: ignore[no-untyped-call]
     for ex in reversed(examples):
         test = example(ex)(test)
-    test = settings(max_examples=max_examples, database=None, deadline=None,
-                    derandomize=False, report_multiple_bugs=False, print_blob=False,
-                    verbosity=Verbosity.quiet, suppress_health_check=list(HealthCheck),
-                    phases=(Phase.explicit, Phase.generate, Phase.shrink))(test)
+    test = settings(
+        max_examples=max_examples,
+        database=None,
+        deadline=None,
+        derandomize=False,
+        report_multiple_bugs=False,
+        print_blob=False,
+        verbosity=Verbosity.quiet,
+        suppress_health_check=list(HealthCheck),
+        phases=(Phase.explicit, Phase.generate, Phase.shrink),
+    )(test)
     test = fixed_seed(seed)(test)
     try:
         test()
@@ -132,8 +155,12 @@ def run(*, strategy: Any, examples: Sequence[dict[str, Any]], signature: Sequenc
     return outcome
 
 
-def matching_misconception(outcome: Outcome, returns: Any, tolerance: Tolerance,
-                           candidates: Sequence[tuple[str, Callable[..., Any]]]) -> str | None:
+def matching_misconception(
+    outcome: Outcome,
+    returns: Any,
+    tolerance: Tolerance,
+    candidates: Sequence[tuple[str, Callable[..., Any]]],
+) -> str | None:
     """The id of the first misconception whose outputs equal the learner's on every recorded
     failing input (only inputs where the learner returned a value count)."""
     observed = [f for f in outcome.failures if f.kind == "mismatch"]
@@ -141,8 +168,10 @@ def matching_misconception(outcome: Outcome, returns: Any, tolerance: Tolerance,
         return None
     for mid, fn in candidates:
         try:
-            if all(compare(returns, f.got, fn(**copy.deepcopy(f.kwargs)), tolerance) is None
-                   for f in observed):
+            if all(
+                compare(returns, f.got, fn(**copy.deepcopy(f.kwargs)), tolerance) is None
+                for f in observed
+            ):
                 return mid
         except Exception:  # a misconception undefined on this input does not match
             continue

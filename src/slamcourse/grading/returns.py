@@ -37,8 +37,13 @@ def parse_returns(raw: Any) -> tuple[str, ...] | str | None:
 
 def describe(spec: tuple[str, ...] | str) -> str:
     if isinstance(spec, str):
-        return {"number": "a number", "integer": "a whole number", "angle": "an angle in radians",
-                "boolean": "True or False", "array": "an array"}[spec]
+        return {
+            "number": "a number",
+            "integer": "a whole number",
+            "angle": "an angle in radians",
+            "boolean": "True or False",
+            "array": "an array",
+        }[spec]
     return f"a tuple of {len(spec)} ({', '.join(spec)})"
 
 
@@ -118,7 +123,9 @@ def _scalar(kind: str, got: Any, want: Any, tol: Tolerance) -> str | None:
     if kind == "integer":
         if number != round(number):
             return f"expected a whole number, got {show(number)}"
-        return None if round(number) == round(target) else f"expected {int(target)}, got {show(got)}"
+        return (
+            None if round(number) == round(target) else f"expected {int(target)}, got {show(got)}"
+        )
     if kind == "angle":
         diff = abs(wrap_angle(number - target))
         ok = diff <= tol.atol + tol.rtol * abs(wrap_angle(target))
@@ -142,9 +149,10 @@ def _array(got: Any, want: Any, tol: Tolerance) -> Mismatch | None:
     if got_shape is None:
         return Mismatch("the returned array is ragged (rows of different lengths)")
     if got_shape != want_shape:
-        words = "×".join(map(str, want_shape)) or "a scalar"
-        return Mismatch(f"expected an array of shape {words}, got "
-                        f"{'×'.join(map(str, got_shape)) or 'a scalar'}")
+        words = "×".join(map(str, want_shape or ())) or "a scalar"
+        return Mismatch(
+            f"expected an array of shape {words}, got {'×'.join(map(str, got_shape)) or 'a scalar'}"
+        )
 
     def walk(g: Any, w: Any, index: tuple[int, ...]) -> Mismatch | None:
         if isinstance(w, list):

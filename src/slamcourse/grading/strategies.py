@@ -22,19 +22,22 @@ class Argument:
 def strategy_for(arguments: tuple[Argument, ...], assume: tuple[str, ...]) -> Any:
     """A strategy of keyword-argument dicts, filtered by the ``assume`` expressions."""
     from hypothesis import strategies as st  # imported here: loading an exercise must stay light
+
     fields: dict[str, Any] = {}
     for arg in arguments:
         if arg.dist == "float":
-            fields[arg.name] = st.floats(float(arg.args[0]), float(arg.args[1]),
-                                         allow_nan=False, allow_infinity=False)
+            fields[arg.name] = st.floats(
+                float(arg.args[0]), float(arg.args[1]), allow_nan=False, allow_infinity=False
+            )
         elif arg.dist == "int":
             fields[arg.name] = st.integers(int(arg.args[0]), int(arg.args[1]))
         else:
             fields[arg.name] = st.sampled_from(list(arg.args))
     strategy = st.fixed_dictionaries(fields)
     if assume:
-        checks = [compile_expression(text, [a.name for a in arguments], logic=True)
-                  for text in assume]
+        checks = [
+            compile_expression(text, [a.name for a in arguments], logic=True) for text in assume
+        ]
         strategy = strategy.filter(lambda kw: _holds(checks, kw))
     return strategy
 

@@ -32,13 +32,19 @@ class Kind:
             key = self.misconception_key
             other = "function" if key == "compute" else "compute"
             if key is None:
-                check.add(m.line, f"{self.name} exercises take feedback per choice or line, "
-                          "not 'misconceptions'")
+                check.add(
+                    m.line,
+                    f"{self.name} exercises take feedback per choice or line, not 'misconceptions'",
+                )
             elif getattr(m, other):
-                check.add(m.line, f"misconception '{m.id}': a {self.name} exercise uses "
-                          f"'{key}:', not '{other}:'")
+                check.add(
+                    m.line,
+                    f"misconception '{m.id}': a {self.name} exercise uses '{key}:', not '{other}:'",
+                )
             elif not getattr(m, key):
-                check.add(m.line, f"misconception '{m.id}' needs '{key}: <function in reference.py>'")
+                check.add(
+                    m.line, f"misconception '{m.id}' needs '{key}: <function in reference.py>'"
+                )
         return None
 
     # ---- answering
@@ -59,7 +65,7 @@ class Kind:
 
     # ---- validation
     def self_test(self, spec: ExerciseSpec, variant: Variant) -> list[Problem]:
-        """Prove the variant sound: the reference answer passes; misconceptions fail and are named."""
+        """Prove the variant sound: the reference passes; misconceptions fail and are named."""
         return []
 
 
@@ -88,14 +94,16 @@ def course_error(spec: ExerciseSpec, line: int | None, message: str) -> CourseEr
     return CourseError(problem(spec, line, message))
 
 
-def misconception_verdict(spec: ExerciseSpec, m: Misconception, variant: Variant, lead: str,
-                          **details: Any) -> Verdict:
+def misconception_verdict(
+    spec: ExerciseSpec, m: Misconception, variant: Variant, lead: str, **details: Any
+) -> Verdict:
     message = render(spec, m.message, variant)
     return Verdict.wrong(f"{lead} {message}".strip(), misconception=m.id, **details)
 
 
-def expect_misconceptions(spec: ExerciseSpec, variant: Variant, check: Any,
-                          answer_for: Any) -> list[Problem]:
+def expect_misconceptions(
+    spec: ExerciseSpec, variant: Variant, check: Any, answer_for: Any
+) -> list[Problem]:
     """Shared validator step: each misconception's answer must fail and be recognised."""
     problems = []
     for m in spec.misconceptions:
@@ -103,11 +111,23 @@ def expect_misconceptions(spec: ExerciseSpec, variant: Variant, check: Any,
         verdict = check(spec, variant, text)
         where = f"variant {variant.seed}"
         if verdict.passed:
-            problems.append(problem(spec, m.line, f"misconception '{m.id}' is accepted in {where} "
-                                    f"(its answer {text} is within the tolerance of the reference); "
-                                    "tighten the tolerance or add a 'require' that keeps them apart"))
+            problems.append(
+                problem(
+                    spec,
+                    m.line,
+                    f"misconception '{m.id}' is accepted in {where} "
+                    f"(its answer {text} is within the tolerance of the reference); "
+                    "tighten the tolerance or add a 'require' that keeps them apart",
+                )
+            )
         elif verdict.misconception != m.id:
             got = verdict.misconception or "no misconception"
-            problems.append(problem(spec, m.line, f"misconception '{m.id}' is not recognised in "
-                                    f"{where}: its answer {text} matched {got}"))
+            problems.append(
+                problem(
+                    spec,
+                    m.line,
+                    f"misconception '{m.id}' is not recognised in "
+                    f"{where}: its answer {text} matched {got}",
+                )
+            )
     return problems

@@ -47,7 +47,8 @@ class ChoiceKind(Kind):
     def reference_optional(self, raw: LineDict) -> bool:
         items = raw.get("choices")
         return isinstance(items, list) and any(
-            isinstance(c, dict) and c.get("correct") is True for c in items)
+            isinstance(c, dict) and c.get("correct") is True for c in items
+        )
 
     def parse(self, spec: ExerciseSpec, raw: LineDict, check: Checker) -> ChoiceOptions:
         super().parse(spec, raw, check)
@@ -64,19 +65,29 @@ class ChoiceKind(Kind):
                 check.add(line, f"choice id '{cid}' must be letters or digits (learners type it)")
             if cid in [c.id for c in choices]:
                 check.add(line, f"choice id '{cid}' is used twice")
-            choices.append(Choice(cid, str(check.typed(data, "text", str, "")),
-                                  bool(check.typed(data, "correct", bool, False)),
-                                  str(check.typed(data, "feedback", str, "")), line))
+            choices.append(
+                Choice(
+                    cid,
+                    str(check.typed(data, "text", str, "")),
+                    bool(check.typed(data, "correct", bool, False)),
+                    str(check.typed(data, "feedback", str, "")),
+                    line,
+                )
+            )
         if len(choices) < 2:
             check.add(raw.line_of("choices"), "give at least two choices")
         flagged = [c for c in choices if c.correct]
         if spec.reference and flagged:
-            check.add(flagged[0].line, "mark correct choices either with 'correct: true' or by "
-                      "'reference', not both")
+            check.add(
+                flagged[0].line,
+                "mark correct choices either with 'correct: true' or by 'reference', not both",
+            )
         if not spec.reference:
             if not self.multiple and len(flagged) != 1:
-                check.add(raw.line_of("choices"), f"a choice exercise needs exactly one "
-                          f"'correct: true' (found {len(flagged)})")
+                check.add(
+                    raw.line_of("choices"),
+                    f"a choice exercise needs exactly one 'correct: true' (found {len(flagged)})",
+                )
             if self.multiple and not flagged:
                 check.add(raw.line_of("choices"), "mark at least one choice 'correct: true'")
         return ChoiceOptions(tuple(choices), bool(check.typed(raw, "shuffle", bool, False)))
@@ -89,9 +100,13 @@ class ChoiceKind(Kind):
         ids = [str(v).lower() for v in (value if isinstance(value, list | tuple) else [value])]
         unknown = [i for i in ids if i not in opts.ids()]
         if unknown or not ids or (not self.multiple and len(ids) != 1):
-            raise course_error(spec, spec.reference_line, f"the reference returned {value!r}; "
-                               f"it must return {'a list of ' if self.multiple else 'one '}"
-                               f"choice id(s) from {', '.join(opts.ids())}")
+            raise course_error(
+                spec,
+                spec.reference_line,
+                f"the reference returned {value!r}; "
+                f"it must return {'a list of ' if self.multiple else 'one '}"
+                f"choice id(s) from {', '.join(opts.ids())}",
+            )
         return ids
 
     def display_order(self, spec: ExerciseSpec, variant: Variant) -> list[Choice]:
@@ -115,8 +130,9 @@ class ChoiceKind(Kind):
         picked = parse_ids(answer)
         unknown = [p for p in picked if p not in opts.ids()]
         if unknown:
-            raise AnswerFormatError(f"there is no option '{unknown[0]}'; choose from "
-                                    f"{', '.join(opts.ids())}")
+            raise AnswerFormatError(
+                f"there is no option '{unknown[0]}'; choose from {', '.join(opts.ids())}"
+            )
         return list(dict.fromkeys(picked))
 
     def check(self, spec: ExerciseSpec, variant: Variant, answer: str) -> Verdict:
@@ -166,8 +182,10 @@ class MultiKind(ChoiceKind):
             parts.append(f"{p}) does not apply. {fb}".strip())
         missing = len(right) - hits
         if missing:
-            parts.append(f"{missing} option{'s' if missing > 1 else ''} that appl"
-                         f"{'y' if missing > 1 else 'ies'} {'are' if missing > 1 else 'is'} missing.")
+            parts.append(
+                f"{missing} option{'s' if missing > 1 else ''} that appl"
+                f"{'y' if missing > 1 else 'ies'} {'are' if missing > 1 else 'is'} missing."
+            )
         return Verdict.wrong(" ".join(parts), score=score, picked=picked)
 
     def self_test(self, spec: ExerciseSpec, variant: Variant) -> list[Problem]:

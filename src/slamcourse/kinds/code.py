@@ -46,9 +46,16 @@ class CodeKind(Kind):
 
     name: ClassVar[str] = "code"
     keys: ClassVar[dict[str, bool]] = {
-        "function": True, "signature": True, "starter": True, "solution": True,
-        "arguments": False, "strategy": False, "assume": False, "examples": False,
-        "returns": True, "max_examples": False,
+        "function": True,
+        "signature": True,
+        "starter": True,
+        "solution": True,
+        "arguments": False,
+        "strategy": False,
+        "assume": False,
+        "examples": False,
+        "returns": True,
+        "max_examples": False,
     }
     misconception_key: ClassVar[str | None] = "function"
 
@@ -63,14 +70,18 @@ class CodeKind(Kind):
         signature = tuple(str(s) for s in check.typed(raw, "signature", list, []))
         for name in signature:
             if not _IDENT.match(name):
-                check.add(raw.line_of("signature"), f"signature entry '{name}' is not a Python name")
+                check.add(
+                    raw.line_of("signature"), f"signature entry '{name}' is not a Python name"
+                )
         paths = {}
         for key in ("starter", "solution"):
             rel = str(check.typed(raw, key, str, ""))
             paths[key] = spec.path.parent / rel
             if rel and not paths[key].is_file():
-                check.add(raw.line_of(key), f"'{key}: {rel}' does not exist next to the exercise "
-                          f"(looked for {paths[key]})")
+                check.add(
+                    raw.line_of(key),
+                    f"'{key}: {rel}' does not exist next to the exercise (looked for {paths[key]})",
+                )
         arguments: list[Argument] = []
         data = raw.get("arguments")
         if data is not None:
@@ -83,17 +94,26 @@ class CodeKind(Kind):
                 check.keys(item, {"float", "int", "choice"}, (), f"argument '{name}'")
                 dists = [d for d in ("float", "int", "choice") if d in item]
                 if len(dists) != 1 or not isinstance(item[dists[0]], list) or not item[dists[0]]:
-                    check.add(line, f"argument '{name}' needs one of float: [lo, hi], "
-                              "int: [lo, hi] or choice: [...]")
+                    check.add(
+                        line,
+                        f"argument '{name}' needs one of float: [lo, hi], "
+                        "int: [lo, hi] or choice: [...]",
+                    )
                     continue
                 arguments.append(Argument(name, dists[0], tuple(item[dists[0]]), line))
             if set(a.name for a in arguments) != set(signature):
-                check.add(raw.line_of("arguments"), f"'arguments' must describe exactly the "
-                          f"signature's parameters ({', '.join(signature)})")
+                check.add(
+                    raw.line_of("arguments"),
+                    f"'arguments' must describe exactly the "
+                    f"signature's parameters ({', '.join(signature)})",
+                )
         strategy = check.typed(raw, "strategy", str)
         if (strategy is None) == (data is None):
-            check.add(raw.line, "a code exercise needs either 'arguments' (simple ranges) or "
-                      "'strategy: <function in reference.py returning a Hypothesis strategy>'")
+            check.add(
+                raw.line,
+                "a code exercise needs either 'arguments' (simple ranges) or "
+                "'strategy: <function in reference.py returning a Hypothesis strategy>'",
+            )
         examples = []
         items = check.typed(raw, "examples", list, [])
         for i, item in enumerate(items):
@@ -107,14 +127,27 @@ class CodeKind(Kind):
             examples.append(_plain(ex))
         returns = parse_returns(raw.get("returns"))
         if returns is None:
-            check.add(raw.line_of("returns"), "'returns' must be number, integer, angle, boolean, "
-                      "array, or a list of the scalar ones such as [number, angle]")
+            check.add(
+                raw.line_of("returns"),
+                "'returns' must be number, integer, angle, boolean, "
+                "array, or a list of the scalar ones such as [number, angle]",
+            )
         max_examples = check.typed(raw, "max_examples", int, 200)
         tol = spec.tolerance if "tolerance" in raw else CODE_TOLERANCE
-        return CodeOptions(function, signature, paths["starter"], paths["solution"],
-                           tuple(arguments), strategy, raw.line_of("strategy"),
-                           tuple(str(a) for a in check.typed(raw, "assume", list, [])),
-                           tuple(examples), returns, max_examples, tol)
+        return CodeOptions(
+            function,
+            signature,
+            paths["starter"],
+            paths["solution"],
+            tuple(arguments),
+            strategy,
+            raw.line_of("strategy"),
+            tuple(str(a) for a in check.typed(raw, "assume", list, [])),
+            tuple(examples),
+            returns,
+            max_examples,
+            tol,
+        )
 
     # ------------------------------------------------------------------ grading
     def expected(self, spec: ExerciseSpec, variant: Variant) -> Any:
@@ -136,8 +169,15 @@ class CodeKind(Kind):
             return reference.function(spec, opts.strategy, opts.strategy_line)()
         return strategy_for(opts.arguments, opts.assume)
 
-    def check_source(self, spec: ExerciseSpec, source: str, filename: str, *,
-                     require_isolation: bool = False, worker: Any = None) -> Verdict:
+    def check_source(
+        self,
+        spec: ExerciseSpec,
+        source: str,
+        filename: str,
+        *,
+        require_isolation: bool = False,
+        worker: Any = None,
+    ) -> Verdict:
         """Grade learner ``source`` in a sandboxed worker (spawned here unless given)."""
         from slamcourse.sandbox import Worker
 
@@ -151,47 +191,77 @@ class CodeKind(Kind):
             loaded = worker.load(source, filename, opts.function, opts.signature)
             if not loaded.ok:
                 return _load_verdict(loaded, filename, opts)
-            return self._grade(spec, worker.call, strategy, filename,
-                               isolation=worker.isolation.level)
+            return self._grade(
+                spec, worker.call, strategy, filename, isolation=worker.isolation.level
+            )
 
-    def _grade(self, spec: ExerciseSpec, call: Any, strategy: Any, filename: str, *,
-               isolation: str) -> Verdict:
+    def _grade(
+        self, spec: ExerciseSpec, call: Any, strategy: Any, filename: str, *, isolation: str
+    ) -> Verdict:
         from slamcourse.grading.properties import exercise_seed, matching_misconception, run
 
         opts: CodeOptions = spec.options
         ref = reference.function(spec, spec.reference or "", spec.reference_line)
-        outcome = run(strategy=strategy, examples=opts.examples, signature=opts.signature,
-                      returns=opts.returns, tolerance=opts.tolerance, reference=ref, call=call,
-                      max_examples=opts.max_examples, seed=exercise_seed(spec.id))
-        details: dict[str, Any] = {"examples": outcome.examples, "seed": outcome.seed,
-                                   "isolation": isolation}
+        outcome = run(
+            strategy=strategy,
+            examples=opts.examples,
+            signature=opts.signature,
+            returns=opts.returns,
+            tolerance=opts.tolerance,
+            reference=ref,
+            call=call,
+            max_examples=opts.max_examples,
+            seed=exercise_seed(spec.id),
+        )
+        details: dict[str, Any] = {
+            "examples": outcome.examples,
+            "seed": outcome.seed,
+            "isolation": isolation,
+        }
         failure = outcome.failure
         if failure is None:
-            return Verdict.ok(f"All {outcome.examples} test inputs passed, edge cases included.",
-                              **details)
+            return Verdict.ok(
+                f"All {outcome.examples} test inputs passed, edge cases included.", **details
+            )
         from slamcourse.grading.returns import show, to_plain
 
         args = ", ".join(f"{k}={show(v)}" for k, v in failure.kwargs.items())
-        details.update(input=failure.kwargs, expected=to_plain(failure.expected), got=failure.got,
-                       frames=[{"file": filename, "line": f.line, "text": f.text,
-                                "function": f.function} for f in failure.frames])
+        details.update(
+            input=failure.kwargs,
+            expected=to_plain(failure.expected),
+            got=failure.got,
+            frames=[
+                {"file": filename, "line": f.line, "text": f.text, "function": f.function}
+                for f in failure.frames
+            ],
+        )
         call_text = f"{opts.function}({args})"
         if failure.kind == "timeout":
-            return Verdict("timeout", 0.0, f"{call_text} did not finish in time ({failure.message})."
-                           " Look for a loop that never ends.", details=details)
+            return Verdict(
+                "timeout",
+                0.0,
+                f"{call_text} did not finish in time ({failure.message})."
+                " Look for a loop that never ends.",
+                details=details,
+            )
         if failure.kind in ("crashed", "protocol_error"):
-            return Verdict.wrong(f"{call_text} stopped the grader's worker: {failure.message}. "
-                                 "Do not exit or write to the grader's channels; return the value.",
-                                 **details)
+            return Verdict.wrong(
+                f"{call_text} stopped the grader's worker: {failure.message}. "
+                "Do not exit or write to the grader's channels; return the value.",
+                **details,
+            )
         if failure.kind == "raised":
             where = "".join(f"\n  {filename}:{f.line}: {f.text}" for f in failure.frames[-3:])
             text = f"{call_text} raised {failure.message}{where}"
         else:
-            text = (f"Wrong result for {call_text}:\n  expected {show(to_plain(failure.expected))}"
-                    f"\n  got      {show(failure.got)}\n  ({failure.message})")
+            text = (
+                f"Wrong result for {call_text}:\n  expected {show(to_plain(failure.expected))}"
+                f"\n  got      {show(failure.got)}\n  ({failure.message})"
+            )
         text += f"\n(smallest failing input found after {outcome.examples} test inputs)"
-        candidates = [(m.id, reference.function(spec, m.function or "", m.line))
-                      for m in spec.misconceptions]
+        candidates = [
+            (m.id, reference.function(spec, m.function or "", m.line)) for m in spec.misconceptions
+        ]
         found = matching_misconception(outcome, opts.returns, opts.tolerance, candidates)
         if found:
             m = next(m for m in spec.misconceptions if m.id == found)
@@ -207,24 +277,45 @@ class CodeKind(Kind):
         problems: list[Problem] = []
         if variant.seed != 0:
             return problems  # Hypothesis covers the inputs; one run is enough
-        for label, path, want_pass in (("solution", opts.solution, True),
-                                       ("starter", opts.starter, False)):
+        for label, path, want_pass in (
+            ("solution", opts.solution, True),
+            ("starter", opts.starter, False),
+        ):
             verdict = self.check_source(spec, path.read_text(encoding="utf-8"), path.name)
             if verdict.passed != want_pass:
-                problems.append(problem(spec, spec.line, f"the {label} {path.name} "
-                                        f"{'fails' if want_pass else 'passes'}: "
-                                        f"{verdict.feedback.splitlines()[0]}"))
+                problems.append(
+                    problem(
+                        spec,
+                        spec.line,
+                        f"the {label} {path.name} "
+                        f"{'fails' if want_pass else 'passes'}: "
+                        f"{verdict.feedback.splitlines()[0]}",
+                    )
+                )
         strategy = self.strategy(spec)
         for m in spec.misconceptions:
             fn = reference.function(spec, m.function or "", m.line)
-            verdict = self._grade(spec, TrustedCallee(fn).call, strategy, "reference.py",
-                                  isolation="trusted")
+            verdict = self._grade(
+                spec, TrustedCallee(fn).call, strategy, "reference.py", isolation="trusted"
+            )
             if verdict.passed:
-                problems.append(problem(spec, m.line, f"misconception '{m.id}' passes every "
-                                        "test input; add an example where it goes wrong"))
+                problems.append(
+                    problem(
+                        spec,
+                        m.line,
+                        f"misconception '{m.id}' passes every "
+                        "test input; add an example where it goes wrong",
+                    )
+                )
             elif verdict.misconception != m.id:
-                problems.append(problem(spec, m.line, f"misconception '{m.id}' fails but is "
-                                        f"recognised as {verdict.misconception or 'nothing'}"))
+                problems.append(
+                    problem(
+                        spec,
+                        m.line,
+                        f"misconception '{m.id}' fails but is "
+                        f"recognised as {verdict.misconception or 'nothing'}",
+                    )
+                )
         return problems
 
 
@@ -235,19 +326,28 @@ def _load_verdict(loaded: Any, filename: str, opts: CodeOptions) -> Verdict:
         return Verdict.unreadable(f"{filename}:{loaded.line}: syntax error: {loaded.message}")
     if status == "missing_function":
         found = f" (it defines {', '.join(loaded.found)})" if loaded.found else ""
-        return Verdict.unreadable(f"{filename} has no function {opts.function}{found}; "
-                                  f"write `{sig}:`")
+        return Verdict.unreadable(
+            f"{filename} has no function {opts.function}{found}; write `{sig}:`"
+        )
     if status == "not_callable":
-        return Verdict.unreadable(f"{opts.function} in {filename} is not a function; write `{sig}:`")
+        return Verdict.unreadable(
+            f"{opts.function} in {filename} is not a function; write `{sig}:`"
+        )
     if status == "signature":
-        return Verdict.unreadable(f"{opts.function} must take {len(opts.signature)} parameters "
-                                  f"({', '.join(opts.signature)}); {loaded.message}".rstrip("; "))
+        return Verdict.unreadable(
+            f"{opts.function} must take {len(opts.signature)} parameters "
+            f"({', '.join(opts.signature)}); {loaded.message}".rstrip("; ")
+        )
     if status == "import_error":
         where = "".join(f"\n  {filename}:{f.line}: {f.text}" for f in loaded.frames[-3:])
         return Verdict.wrong(f"{filename} raised while it was loaded: {loaded.message}{where}")
     if status == "timeout":
-        return Verdict("timeout", 0.0, f"{filename} did not finish loading in time: is there a "
-                       "loop at the top level of the file?")
+        return Verdict(
+            "timeout",
+            0.0,
+            f"{filename} did not finish loading in time: is there a "
+            "loop at the top level of the file?",
+        )
     return Verdict.wrong(f"{filename} stopped the grader's worker while loading: {loaded.message}")
 
 

@@ -65,8 +65,12 @@ class ExpressionKind(Kind):
                     check.add(line, f"'expr' of variable '{name}' must be a formula as text")
                     continue
                 args: tuple[Any, ...] = (arg,)
-            elif (isinstance(arg, list) and len(arg) == 2 and arg[0] <= arg[1]
-                  and all(isinstance(a, int | float) for a in arg)):
+            elif (
+                isinstance(arg, list)
+                and len(arg) == 2
+                and arg[0] <= arg[1]
+                and all(isinstance(a, int | float) for a in arg)
+            ):
                 args = tuple(arg)
             else:
                 check.add(line, f"'{dists[0]}' of variable '{name}' must be [low, high]")
@@ -91,7 +95,9 @@ class ExpressionKind(Kind):
             if var.dist == "uniform":
                 env[var.name] = rng.uniform(var.args[0], var.args[1], opts.points)
             elif var.dist == "int":
-                env[var.name] = rng.integers(var.args[0], var.args[1] + 1, opts.points).astype(float)
+                env[var.name] = rng.integers(var.args[0], var.args[1] + 1, opts.points).astype(
+                    float
+                )
             else:
                 try:
                     expr = compile_expression(var.args[0], env.keys())
@@ -100,8 +106,9 @@ class ExpressionKind(Kind):
                 env[var.name] = expr.evaluate(env, backend="numpy")
         return env
 
-    def _values(self, spec: ExerciseSpec, name: str, line: int, variant: Variant,
-                env: dict[str, Any]) -> Any:
+    def _values(
+        self, spec: ExerciseSpec, name: str, line: int, variant: Variant, env: dict[str, Any]
+    ) -> Any:
         import numpy as np
 
         raw = reference.call(spec, name, line, {**variant.params, **env})
@@ -110,8 +117,9 @@ class ExpressionKind(Kind):
 
     def expected(self, spec: ExerciseSpec, variant: Variant) -> Any:
         assert spec.reference is not None
-        return self._values(spec, spec.reference, spec.reference_line, variant,
-                            self.sample(spec, variant))
+        return self._values(
+            spec, spec.reference, spec.reference_line, variant, self.sample(spec, variant)
+        )
 
     def _matches(self, spec: ExerciseSpec, got: Any, want: Any) -> Any:
         """Index of the first sample point where ``got`` differs, or ``None`` when all agree."""
@@ -134,28 +142,38 @@ class ExpressionKind(Kind):
         except AnswerFormatError as exc:
             return Verdict.unreadable(str(exc))
         env = self.sample(spec, variant)
-        got = np.broadcast_to(np.asarray(expr.evaluate(env, backend="numpy"), dtype=float),
-                              (opts.points,))
+        got = np.broadcast_to(
+            np.asarray(expr.evaluate(env, backend="numpy"), dtype=float), (opts.points,)
+        )
         want = self.expected(spec, variant)
         bad = self._matches(spec, got, want)
         if bad is None:
-            return Verdict.ok(f"Correct: your formula agrees with the reference at all "
-                              f"{opts.points} test points.")
+            return Verdict.ok(
+                f"Correct: your formula agrees with the reference at all {opts.points} test points."
+            )
         for m in spec.misconceptions:
             assert m.compute is not None
-            if self._matches(spec, got, self._values(spec, m.compute, m.line, variant, env)) is None:
+            if (
+                self._matches(spec, got, self._values(spec, m.compute, m.line, variant, env))
+                is None
+            ):
                 return misconception_verdict(spec, m, variant, "Not quite.")
         at = ", ".join(f"{n} = {format_number(float(env[n][bad]))}" for n in names)
         if self._matches(spec, -got, want) is None:
             return Verdict.wrong("Not quite: your formula has the wrong sign everywhere.")
-        return Verdict.wrong(f"Not quite: at {at} your formula gives "
-                             f"{format_number(float(got[bad]))}, but the right value is "
-                             f"{format_number(float(want[bad]))}.", point={n: float(env[n][bad]) for n in names})
+        return Verdict.wrong(
+            f"Not quite: at {at} your formula gives "
+            f"{format_number(float(got[bad]))}, but the right value is "
+            f"{format_number(float(want[bad]))}.",
+            point={n: float(env[n][bad]) for n in names},
+        )
 
     def how_to_answer(self, spec: ExerciseSpec, variant: Variant) -> str:
         names = ", ".join(v.name for v in spec.options.variables)
-        return (f"Answer with a formula in {names} (e.g. -dx/sqrt(q)); you may use + - * / ^, "
-                "sqrt, sin, cos, atan2, pi.")
+        return (
+            f"Answer with a formula in {names} (e.g. -dx/sqrt(q)); you may use + - * / ^, "
+            "sqrt, sin, cos, atan2, pi."
+        )
 
     def self_test(self, spec: ExerciseSpec, variant: Variant) -> list[Problem]:
         opts: ExpressionOptions = spec.options
@@ -165,16 +183,36 @@ class ExpressionKind(Kind):
         import numpy as np
 
         if np.count_nonzero(np.isfinite(want)) < opts.points // 2:
-            problems.append(problem(spec, spec.reference_line, "the reference is undefined at "
-                                    "most sample points; narrow the variables' ranges"))
+            problems.append(
+                problem(
+                    spec,
+                    spec.reference_line,
+                    "the reference is undefined at "
+                    "most sample points; narrow the variables' ranges",
+                )
+            )
         if opts.answer is not None:
             verdict = self.check(spec, variant, opts.answer)
             if not verdict.passed:
-                problems.append(problem(spec, spec.line, f"'answer: {opts.answer}' is not "
-                                        f"accepted: {verdict.feedback}"))
+                problems.append(
+                    problem(
+                        spec,
+                        spec.line,
+                        f"'answer: {opts.answer}' is not accepted: {verdict.feedback}",
+                    )
+                )
         for m in spec.misconceptions:
             assert m.compute is not None
-            if self._matches(spec, self._values(spec, m.compute, m.line, variant, env), want) is None:
-                problems.append(problem(spec, m.line, f"misconception '{m.id}' equals the "
-                                        "reference at every sample point, so it would be accepted"))
+            if (
+                self._matches(spec, self._values(spec, m.compute, m.line, variant, env), want)
+                is None
+            ):
+                problems.append(
+                    problem(
+                        spec,
+                        m.line,
+                        f"misconception '{m.id}' equals the "
+                        "reference at every sample point, so it would be accepted",
+                    )
+                )
         return problems

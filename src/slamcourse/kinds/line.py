@@ -37,8 +37,12 @@ class LineKind(Kind):
     """Answer with the number of the line that holds the bug."""
 
     name: ClassVar[str] = "line"
-    keys: ClassVar[dict[str, bool]] = {"code": True, "language": False, "answer": True,
-                                       "lines": False}
+    keys: ClassVar[dict[str, bool]] = {
+        "code": True,
+        "language": False,
+        "answer": True,
+        "lines": False,
+    }
     reference_required: ClassVar[bool] = False
     misconception_key: ClassVar[str | None] = None
 
@@ -55,18 +59,24 @@ class LineKind(Kind):
                 check.add(raw.line_of("lines"), f"'lines' keys are line numbers, not '{key}'")
                 continue
             if not 1 <= number <= opts.count:
-                check.add(raw.line_of("lines"), f"line {number} is outside the listing "
-                          f"(1–{opts.count})")
+                check.add(
+                    raw.line_of("lines"), f"line {number} is outside the listing (1–{opts.count})"
+                )
             elif number == answer:
-                check.add(raw.line_of("lines"), f"line {number} is the answer; 'lines' is for "
-                          "tempting wrong lines")
+                check.add(
+                    raw.line_of("lines"),
+                    f"line {number} is the answer; 'lines' is for tempting wrong lines",
+                )
             opts.lines[number] = str(text)
         if not 1 <= answer <= max(opts.count, 1):
-            check.add(raw.line_of("answer"), f"'answer: {answer}' is outside the listing "
-                      f"(1–{opts.count})")
+            check.add(
+                raw.line_of("answer"), f"'answer: {answer}' is outside the listing (1–{opts.count})"
+            )
         if spec.reference:
-            check.add(spec.reference_line, "a line exercise takes its answer from 'answer'; "
-                      "remove 'reference'")
+            check.add(
+                spec.reference_line,
+                "a line exercise takes its answer from 'answer'; remove 'reference'",
+            )
         return opts
 
     def expected(self, spec: ExerciseSpec, variant: Variant) -> int:
@@ -91,8 +101,11 @@ class LineKind(Kind):
             return Verdict.ok(f"Correct: line {number} holds the bug.")
         if number in opts.lines:
             return Verdict.wrong(f"Not line {number}. {opts.lines[number]}", line=number)
-        return Verdict.wrong(f"Line {number} does what it should. Trace what each line computes "
-                             "and compare it with the mathematics.", line=number)
+        return Verdict.wrong(
+            f"Line {number} does what it should. Trace what each line computes "
+            "and compare it with the mathematics.",
+            line=number,
+        )
 
     def self_test(self, spec: ExerciseSpec, variant: Variant) -> list[Problem]:
         opts: LineOptions = spec.options

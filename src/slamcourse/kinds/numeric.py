@@ -7,10 +7,10 @@ from dataclasses import dataclass
 from typing import Any, ClassVar
 
 from slamcourse.answers import (
+    angle_is_close,
     compare_entries,
     format_number,
     is_close,
-    angle_is_close,
     parse_integer,
     parse_matrix,
     parse_number,
@@ -62,8 +62,11 @@ def _parse_options(raw: LineDict, check: Checker, *, vector: bool) -> NumericOpt
     angle: bool | tuple[int, ...] = False
     if isinstance(angle_raw, bool):
         angle = angle_raw
-    elif vector and isinstance(angle_raw, list) and all(
-            isinstance(i, int) and not isinstance(i, bool) and i >= 0 for i in angle_raw):
+    elif (
+        vector
+        and isinstance(angle_raw, list)
+        and all(isinstance(i, int) and not isinstance(i, bool) and i >= 0 for i in angle_raw)
+    ):
         angle = tuple(angle_raw)
     else:
         form = "true, or a list of 0-based entry indices such as [1]" if vector else "true or false"
@@ -71,21 +74,26 @@ def _parse_options(raw: LineDict, check: Checker, *, vector: bool) -> NumericOpt
     if exact and angle:
         check.add(raw.line_of("angle"), "an answer cannot be both 'exact' and an 'angle'")
     labels = check.typed(raw, "labels", list, []) if vector else []
-    return NumericOptions(exact, angle, str(check.typed(raw, "units", str, "")),
-                          tuple(str(x) for x in labels))
+    return NumericOptions(
+        exact, angle, str(check.typed(raw, "units", str, "")), tuple(str(x) for x in labels)
+    )
 
 
 def _to_float(spec: ExerciseSpec, value: Any, what: str, exact: bool) -> float:
     try:
         number = float(value)
     except (TypeError, ValueError):
-        raise course_error(spec, spec.reference_line,
-                           f"{what} must be a number, got {value!r}") from None
+        raise course_error(
+            spec, spec.reference_line, f"{what} must be a number, got {value!r}"
+        ) from None
     if not math.isfinite(number):
         raise course_error(spec, spec.reference_line, f"{what} is not finite ({number})")
     if exact and number != round(number):
-        raise course_error(spec, spec.reference_line,
-                           f"{what} is {number}, not a whole number, but the exercise is 'exact'")
+        raise course_error(
+            spec,
+            spec.reference_line,
+            f"{what} is {number}, not a whole number, but the exercise is 'exact'",
+        )
     return number
 
 
@@ -100,8 +108,9 @@ class NumberKind(Kind):
         return _parse_options(raw, check, vector=False)
 
     def expected(self, spec: ExerciseSpec, variant: Variant) -> float:
-        return _to_float(spec, call_reference(spec, variant), "the reference answer",
-                         spec.options.exact)
+        return _to_float(
+            spec, call_reference(spec, variant), "the reference answer", spec.options.exact
+        )
 
     def accepts(self, spec: ExerciseSpec, got: float, want: float) -> bool:
         opts: NumericOptions = spec.options
@@ -128,11 +137,18 @@ class NumberKind(Kind):
             return Verdict.ok(
                 f"Correct. The reference value is {format_number(want)}{units}; answers from "
                 f"{format_number(lo)} to {format_number(hi)}{mod} are accepted.",
-                expected=want, window=[lo, hi])
+                expected=want,
+                window=[lo, hi],
+            )
         lead = f"Not quite: {format_number(got)}{units} is not accepted."
         for m in spec.misconceptions:
-            if self.accepts(spec, got, _to_float(spec, misconception_value(spec, m, variant),
-                                                 f"misconception '{m.id}'", False)):
+            if self.accepts(
+                spec,
+                got,
+                _to_float(
+                    spec, misconception_value(spec, m, variant), f"misconception '{m.id}'", False
+                ),
+            ):
                 return misconception_verdict(spec, m, variant, lead, got=got)
         return Verdict.wrong(f"{lead} {self._diagnose(spec, got, want)}".strip(), got=got)
 
@@ -147,8 +163,10 @@ class NumberKind(Kind):
             ratio = math.log10(abs(got / want))
             k = round(ratio)
             if k != 0 and abs(ratio - k) < 0.01:
-                return (f"Your value is off by a factor of 10^{k}: check the units and the "
-                        "decimal point.")
+                return (
+                    f"Your value is off by a factor of 10^{k}: check the units and the "
+                    "decimal point."
+                )
         return ""
 
     def how_to_answer(self, spec: ExerciseSpec, variant: Variant) -> str:
@@ -157,11 +175,13 @@ class NumberKind(Kind):
         if opts.exact:
             return f"Answer with a whole number{units}."
         angle = " Angles are in radians and compared modulo 2π." if opts.angle else ""
-        return (f"Answer with a number{units} (e.g. 0.25, 7/5, pi/4, sqrt(2)/2); accepted "
-                f"{describe_tolerance(spec.tolerance, False)}.{angle}")
+        return (
+            f"Answer with a number{units} (e.g. 0.25, 7/5, pi/4, sqrt(2)/2); accepted "
+            f"{describe_tolerance(spec.tolerance, False)}.{angle}"
+        )
 
     def answer_text(self, value: float, exact: bool) -> str:
-        return str(int(round(value))) if exact else repr(float(value))
+        return str(round(value)) if exact else repr(float(value))
 
     def self_test(self, spec: ExerciseSpec, variant: Variant) -> list[Problem]:
         want = self.expected(spec, variant)
@@ -169,12 +189,19 @@ class NumberKind(Kind):
         text = self.answer_text(want, spec.options.exact)
         verdict = self.check(spec, variant, text)
         if not verdict.passed:
-            problems.append(problem(spec, spec.reference_line, f"variant {variant.seed}: the "
-                                    f"reference answer {text} is not accepted: {verdict.feedback}"))
+            problems.append(
+                problem(
+                    spec,
+                    spec.reference_line,
+                    f"variant {variant.seed}: the "
+                    f"reference answer {text} is not accepted: {verdict.feedback}",
+                )
+            )
 
         def answer_for(m: Misconception) -> str:
-            value = _to_float(spec, misconception_value(spec, m, variant), f"misconception "
-                              f"'{m.id}'", False)
+            value = _to_float(
+                spec, misconception_value(spec, m, variant), f"misconception '{m.id}'", False
+            )
             return self.answer_text(value, spec.options.exact and value == round(value))
 
         return problems + expect_misconceptions(spec, variant, self.check, answer_for)
@@ -185,8 +212,12 @@ class VectorKind(Kind):
 
     name: ClassVar[str] = "vector"
     ndim: ClassVar[int] = 1
-    keys: ClassVar[dict[str, bool]] = {"exact": False, "angle": False, "units": False,
-                                       "labels": False}
+    keys: ClassVar[dict[str, bool]] = {
+        "exact": False,
+        "angle": False,
+        "units": False,
+        "labels": False,
+    }
 
     def parse(self, spec: ExerciseSpec, raw: LineDict, check: Checker) -> NumericOptions:
         super().parse(spec, raw, check)
@@ -198,11 +229,15 @@ class VectorKind(Kind):
         try:
             arr = np.asarray(value, dtype=float)
         except (TypeError, ValueError):
-            raise course_error(spec, spec.reference_line,
-                               f"{what} must be a {self.name} of numbers, got {value!r}") from None
+            raise course_error(
+                spec, spec.reference_line, f"{what} must be a {self.name} of numbers, got {value!r}"
+            ) from None
         if arr.ndim != self.ndim or arr.size == 0:
-            raise course_error(spec, spec.reference_line, f"{what} must be a {self.ndim}-D "
-                               f"{self.name}, got shape {arr.shape}")
+            raise course_error(
+                spec,
+                spec.reference_line,
+                f"{what} must be a {self.ndim}-D {self.name}, got shape {arr.shape}",
+            )
         if not np.all(np.isfinite(arr)):
             raise course_error(spec, spec.reference_line, f"{what} has non-finite entries")
         result: list[Any] = arr.tolist()
@@ -216,8 +251,9 @@ class VectorKind(Kind):
 
     def _compare(self, spec: ExerciseSpec, got: list[Any], want: list[Any]) -> Any:
         opts: NumericOptions = spec.options
-        return compare_entries(got, want, spec.tolerance.rtol, spec.tolerance.atol,
-                               angle=opts.angle, exact=opts.exact)
+        return compare_entries(
+            got, want, spec.tolerance.rtol, spec.tolerance.atol, angle=opts.angle, exact=opts.exact
+        )
 
     def _entry_name(self, spec: ExerciseSpec, index: tuple[int, ...]) -> str:
         labels = spec.options.labels
@@ -234,28 +270,36 @@ class VectorKind(Kind):
         want = self.expected(spec, variant)
         result = self._compare(spec, got, want)
         if not result.shape_ok:
-            return Verdict.wrong(f"Expected {self._shape_words(result.expected_shape)}, but your "
-                                 f"answer has {self._shape_words(result.got_shape)}.")
+            return Verdict.wrong(
+                f"Expected {self._shape_words(result.expected_shape)}, but your "
+                f"answer has {self._shape_words(result.got_shape)}."
+            )
         if result.ok:
-            return Verdict.ok(f"Correct. Accepted {describe_tolerance(spec.tolerance, spec.options.exact)} "
-                              "entry by entry.", expected=want)
+            return Verdict.ok(
+                f"Correct. Accepted {describe_tolerance(spec.tolerance, spec.options.exact)} "
+                "entry by entry.",
+                expected=want,
+            )
         total = _size(want)
         score = (total - len(result.wrong)) / total
         lead = "Not quite."
         for m in spec.misconceptions:
-            value = self._array(spec, misconception_value(spec, m, variant),
-                                f"misconception '{m.id}'")
+            value = self._array(
+                spec, misconception_value(spec, m, variant), f"misconception '{m.id}'"
+            )
             if self._compare(spec, got, value).ok:
                 return misconception_verdict(spec, m, variant, lead, wrong=_lists(result.wrong))
         negated = _negate(got)
         if self._compare(spec, negated, want).ok:
-            return Verdict.wrong(f"{lead} Every entry has the wrong sign.", score=score,
-                                 wrong=_lists(result.wrong))
+            return Verdict.wrong(
+                f"{lead} Every entry has the wrong sign.", score=score, wrong=_lists(result.wrong)
+            )
         names = ", ".join(self._entry_name(spec, i) for i in result.wrong)
         word = "entry" if len(result.wrong) == 1 else "entries"
         right = " The other entries are right." if len(result.wrong) < total else ""
-        return Verdict.wrong(f"{lead} Wrong {word}: {names}.{right}", score=score,
-                             wrong=_lists(result.wrong))
+        return Verdict.wrong(
+            f"{lead} Wrong {word}: {names}.{right}", score=score, wrong=_lists(result.wrong)
+        )
 
     def _shape_words(self, shape: tuple[int, ...]) -> str:
         if len(shape) == 1:
@@ -267,8 +311,10 @@ class VectorKind(Kind):
     def how_to_answer(self, spec: ExerciseSpec, variant: Variant) -> str:
         units = f" (in {spec.options.units})" if spec.options.units else ""
         tol = describe_tolerance(spec.tolerance, spec.options.exact)
-        return (f"Answer with a vector{units} such as [0.3, -0.09] or 0.3 -0.09; each entry "
-                f"accepted {tol}.")
+        return (
+            f"Answer with a vector{units} such as [0.3, -0.09] or 0.3 -0.09; each entry "
+            f"accepted {tol}."
+        )
 
     def answer_text(self, value: list[Any]) -> str:
         return repr(value)
@@ -278,12 +324,19 @@ class VectorKind(Kind):
         problems = []
         verdict = self.check(spec, variant, self.answer_text(want))
         if not verdict.passed:
-            problems.append(problem(spec, spec.reference_line, f"variant {variant.seed}: the "
-                                    f"reference answer {want} is not accepted: {verdict.feedback}"))
+            problems.append(
+                problem(
+                    spec,
+                    spec.reference_line,
+                    f"variant {variant.seed}: the "
+                    f"reference answer {want} is not accepted: {verdict.feedback}",
+                )
+            )
 
         def answer_for(m: Misconception) -> str:
-            return self.answer_text(self._array(spec, misconception_value(spec, m, variant),
-                                                f"misconception '{m.id}'"))
+            return self.answer_text(
+                self._array(spec, misconception_value(spec, m, variant), f"misconception '{m.id}'")
+            )
 
         return problems + expect_misconceptions(spec, variant, self.check, answer_for)
 
@@ -300,8 +353,10 @@ class MatrixKind(VectorKind):
 
     def how_to_answer(self, spec: ExerciseSpec, variant: Variant) -> str:
         tol = describe_tolerance(spec.tolerance, spec.options.exact)
-        return (f"Answer with a matrix such as [[1, 2], [3, 4]] or [1 2; 3 4]; each entry "
-                f"accepted {tol}.")
+        return (
+            f"Answer with a matrix such as [[1, 2], [3, 4]] or [1 2; 3 4]; each entry "
+            f"accepted {tol}."
+        )
 
 
 def _size(value: list[Any]) -> int:

@@ -82,8 +82,10 @@ class OrderKind(Kind):
             if str(key).lower() not in [it.id for it in items]:
                 check.add(raw.line_of("feedback"), f"feedback for unknown item '{key}'")
         if spec.reference:
-            check.add(spec.reference_line, "an order exercise takes its answer from the order of "
-                      "'items'; remove 'reference'")
+            check.add(
+                spec.reference_line,
+                "an order exercise takes its answer from the order of 'items'; remove 'reference'",
+            )
         return OrderOptions(tuple(items), {str(k).lower(): str(v) for k, v in feedback.items()})
 
     def expected(self, spec: ExerciseSpec, variant: Variant) -> list[str]:
@@ -111,8 +113,9 @@ class OrderKind(Kind):
             return Verdict.unreadable(str(exc))
         unknown = [g for g in given if g not in right]
         if unknown:
-            return Verdict.unreadable(f"there is no item '{unknown[0]}'; the items are "
-                                      f"{', '.join(sorted(right))}")
+            return Verdict.unreadable(
+                f"there is no item '{unknown[0]}'; the items are {', '.join(sorted(right))}"
+            )
         if sorted(given) != sorted(right):
             missing = [r for r in right if r not in given]
             twice = sorted({g for g in given if given.count(g) > 1})

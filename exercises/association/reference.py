@@ -1,0 +1,214 @@
+"""Reference answers for chapter ``association``: which landmark produced a measurement?
+
+A measurement ``z`` is compared with the predicted measurement ``h_j`` of each candidate landmark
+through the innovation ``ν = z − h_j`` and its covariance ``S`` (here diagonal,
+``S = diag(s00, s11)``: range variance in m², bearing variance in rad²). The squared Mahalanobis
+distance
+
+    d² = νᵀ S⁻¹ ν = ν₀²/s00 + ν₁²/s11
+
+is dimensionless. For a correct association it follows a χ² distribution with as many degrees of
+freedom as the measurement has entries, which gives the gate: accept when ``d²`` is below the χ²
+quantile at the chosen confidence.
+
+Every function takes the exercise's parameters as keyword arguments. Functions that return a
+Hypothesis strategy import Hypothesis inside their body, and scipy is imported inside the
+functions that need it: other exercises load this module and must stay fast. Functions whose
+name starts with ``mistake_`` (numeric exercises) or that end in a misconception's name (code
+exercises) compute a named wrong answer.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import Any
+
+Vector = Sequence[float]
+
+
+# --- Mahalanobis distance ------------------------------------------------------------------
+
+
+def mahalanobis(nu0: float, nu1: float, s00: float, s11: float) -> float:
+    """Squared Mahalanobis distance ``ν₀²/s00 + ν₁²/s11`` of a 2D innovation, diagonal ``S``."""
+    return nu0 * nu0 / s00 + nu1 * nu1 / s11
+
+
+def mahalanobis_scalar(nu: float, s: float) -> float:
+    """Squared Mahalanobis distance ``ν²/S`` of a scalar innovation (dimensionless)."""
+    return nu * nu / s
+
+
+def mahalanobis_euclidean(nu0: float, nu1: float, s00: float, s11: float) -> float:
+    """Wrong: ``ν·ν``, the squared Euclidean length (S ignored)."""
+    return nu0 * nu0 + nu1 * nu1
+
+
+def mahalanobis_times_s(nu0: float, nu1: float, s00: float, s11: float) -> float:
+    """Wrong: ``νᵀ S ν``, multiplied by the covariance instead of divided."""
+    return nu0 * nu0 * s00 + nu1 * nu1 * s11
+
+
+def mahalanobis_square_root(nu0: float, nu1: float, s00: float, s11: float) -> float:
+    """Wrong: ``d`` where ``d²`` was asked for."""
+    return math.sqrt(mahalanobis(nu0, nu1, s00, s11))
+
+
+def mistake_scalar_euclidean(nu: float, s: float) -> float:
+    """``ν²``: the squared innovation, not divided by its variance."""
+    return nu * nu
+
+
+def mistake_scalar_not_squared(nu: float, s: float) -> float:
+    """``ν/S``: the innovation divided by the variance, not squared."""
+    return nu / s
+
+
+def mistake_scalar_over_sigma(nu: float, s: float) -> float:
+    """``ν/σ``: the distance ``d`` itself (in standard deviations), not its square."""
+    return abs(nu) / math.sqrt(s)
+
+
+def mistake_2d_euclidean(nu0: float, nu1: float, s00: float, s11: float) -> float:
+    """``ν₀² + ν₁²``: the Euclidean length squared, S ignored."""
+    return mahalanobis_euclidean(nu0, nu1, s00, s11)
+
+
+def mistake_2d_times_s(nu0: float, nu1: float, s00: float, s11: float) -> float:
+    """``ν₀²·s00 + ν₁²·s11``: multiplied by S instead of by its inverse."""
+    return mahalanobis_times_s(nu0, nu1, s00, s11)
+
+
+def mistake_2d_range_only(nu0: float, nu1: float, s00: float, s11: float) -> float:
+    """``ν₀²/s00``: the bearing term left out."""
+    return nu0 * nu0 / s00
+
+
+# --- the χ² gate ----------------------------------------------------------------------------
+
+
+def chi2_threshold(dof: int, confidence: float) -> float:
+    """The χ² quantile with ``dof`` degrees of freedom at probability ``confidence``."""
+    from scipy.stats import chi2  # imported here: loading this module must stay fast
+
+    return float(chi2.ppf(confidence, dof))
+
+
+def in_gate(d2: float, dof: int, confidence: float) -> bool:
+    """Accept the association when ``d² < χ²_dof(confidence)``."""
+    return d2 < chi2_threshold(dof, confidence)
+
+
+def in_gate_one_dof(d2: float, dof: int, confidence: float) -> bool:
+    """Wrong: the 1-DOF threshold whatever the measurement's size (3.84 at 95 %)."""
+    return d2 < chi2_threshold(1, confidence)
+
+
+def in_gate_on_distance(d2: float, dof: int, confidence: float) -> bool:
+    """Wrong: ``d = √d²`` compared with a threshold meant for ``d²``."""
+    return math.sqrt(d2) < chi2_threshold(dof, confidence)
+
+
+def gate_inputs() -> Any:
+    """Hypothesis strategy for ``in_gate``: ``d²`` at least 5 % away from the threshold, so
+    rounding in a learner's own quantile cannot flip the verdict."""
+    from hypothesis import strategies as st
+
+    @st.composite
+    def draw(draw: Any) -> dict[str, Any]:
+        dof = draw(st.sampled_from([1, 2]))
+        confidence = draw(st.floats(0.5, 0.999))
+        factor = draw(st.one_of(st.floats(0.02, 0.95), st.floats(1.05, 4.0)))
+        return {"d2": chi2_threshold(dof, confidence) * factor, "dof": dof,
+                "confidence": confidence}
+
+    return draw()
+
+
+# --- nearest neighbour ----------------------------------------------------------------------
+
+
+def _d2(z: Vector, h: Vector, s00: float, s11: float) -> float:
+    return mahalanobis(z[0] - h[0], z[1] - h[1], s00, s11)
+
+
+def nearest_neighbour(
+    z: Vector, landmarks: Sequence[Vector], s00: float, s11: float, gate: float
+) -> int:
+    """Index of the candidate with the smallest ``d²`` among those with ``d² < gate``; −1 if
+    no candidate passes the gate (the measurement then starts a new landmark)."""
+    best, best_d2 = -1, math.inf
+    for j, h in enumerate(landmarks):
+        d2 = _d2(z, h, s00, s11)
+        if d2 < gate and d2 < best_d2:
+            best, best_d2 = j, d2
+    return best
+
+
+def nearest_neighbour_euclidean(
+    z: Vector, landmarks: Sequence[Vector], s00: float, s11: float, gate: float
+) -> int:
+    """Wrong (the listing's bug): the Euclidean ``ν·ν`` used as the distance and gated."""
+    best, best_d2 = -1, math.inf
+    for j, h in enumerate(landmarks):
+        d2 = (z[0] - h[0]) ** 2 + (z[1] - h[1]) ** 2
+        if d2 < gate and d2 < best_d2:
+            best, best_d2 = j, d2
+    return best
+
+
+def nearest_neighbour_no_gate(
+    z: Vector, landmarks: Sequence[Vector], s00: float, s11: float, gate: float
+) -> int:
+    """Wrong: the Mahalanobis-nearest candidate, even when it is outside the gate."""
+    if not landmarks:
+        return -1
+    return min(range(len(landmarks)), key=lambda j: _d2(z, landmarks[j], s00, s11))
+
+
+def nearest_neighbour_first_in_gate(
+    z: Vector, landmarks: Sequence[Vector], s00: float, s11: float, gate: float
+) -> int:
+    """Wrong: the first candidate inside the gate, not the best one."""
+    for j, h in enumerate(landmarks):
+        if _d2(z, h, s00, s11) < gate:
+            return j
+    return -1
+
+
+def nearest_neighbour_inputs() -> Any:
+    """Hypothesis strategy for ``nearest_neighbour``.
+
+    Candidates are drawn through their whitened innovation ``u`` (``ν = u·σ``), so every ``d²``
+    lies in [0, 32]. Bearings stay within ±1.5 rad, so no innovation ever needs wrapping.
+    ``S`` is strongly anisotropic (range σ of 0.2–1 m, bearing σ of 0.01–0.1 rad), which is
+    what makes the Euclidean distance pick the wrong candidate. Draws with a near tie between
+    the two best candidates inside the gate, or a ``d²`` within 5 % of the gate, are rejected.
+    """
+    from hypothesis import strategies as st
+
+    @st.composite
+    def draw(draw: Any) -> dict[str, Any]:
+        s00 = draw(st.floats(0.04, 1.0))
+        s11 = draw(st.floats(1e-4, 0.01))
+        gate = draw(st.sampled_from([4.61, 5.99, 9.21]))  # χ²₂ at 90 %, 95 %, 99 %
+        z = [draw(st.floats(1.0, 30.0)), draw(st.floats(-1.0, 1.0))]
+        count = draw(st.integers(0, 6))
+        landmarks = []
+        for _ in range(count):
+            u0 = draw(st.floats(-4.0, 4.0))
+            u1 = draw(st.floats(-4.0, 4.0))
+            landmarks.append([z[0] - u0 * math.sqrt(s00), z[1] - u1 * math.sqrt(s11)])
+        return {"z": z, "landmarks": landmarks, "s00": s00, "s11": s11, "gate": gate}
+
+    return draw().filter(_unambiguous)
+
+
+def _unambiguous(kw: dict[str, Any]) -> bool:
+    d2s = [_d2(kw["z"], h, kw["s00"], kw["s11"]) for h in kw["landmarks"]]
+    gate = kw["gate"]
+    if any(abs(d - gate) < 0.05 * gate for d in d2s):
+        return False
+    inside = sorted(d for d in d2s if d < gate)
+    return len(inside) < 2 or inside[1] - inside[0] > 0.05 * gate
