@@ -274,7 +274,8 @@ class Session:
     def load(self, req: dict[str, Any]) -> dict[str, Any]:
         source = req["source"]
         self.filename = req["filename"]
-        self.lines = source.splitlines()
+        # The line breaks Python itself counts (str.splitlines also splits at \f, \x1c, U+2028...)
+        self.lines = source.replace("\r\n", "\n").replace("\r", "\n").split("\n")
         try:
             code = compile(source, self.filename, "exec", dont_inherit=True)
         except SyntaxError as exc:

@@ -1,0 +1,184 @@
+"""Reference code for chapter ``factor-graphs``: counting a factor graph, and fill-in.
+
+Variables are the unknowns (poses, landmarks); factors are the measurements and priors linking
+them. Eliminating a variable during sparse factorisation links all of its remaining neighbours
+to each other: every such link that was not already there is a *fill-in* edge.
+
+Every exercise function takes the exercise's parameters (or a code exercise's arguments) as
+keyword arguments. Functions whose name starts with ``mistake_`` are wrong implementations or
+wrong answers of a named misconception.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from itertools import combinations
+from typing import Any
+
+Pair = Sequence[int]
+
+
+def _adjacency(n: int, edges: Sequence[Pair]) -> list[set[int]]:
+    adj: list[set[int]] = [set() for _ in range(n)]
+    for a, b in edges:
+        adj[a].add(b)
+        adj[b].add(a)
+    return adj
+
+
+def fill_in(n: int, edges: Sequence[Pair], order: Sequence[int]) -> int:
+    """Number of new edges created by eliminating the nodes ``0 … n−1`` in ``order``.
+
+    Eliminating ``v`` connects every pair of its remaining neighbours (counting the pairs not
+    yet connected) and then removes ``v`` from the graph.
+    """
+    adj = _adjacency(n, edges)
+    created = 0
+    for v in order:
+        for a, b in combinations(sorted(adj[v]), 2):
+            if b not in adj[a]:
+                adj[a].add(b)
+                adj[b].add(a)
+                created += 1
+        for u in adj[v]:
+            adj[u].discard(v)
+        adj[v].clear()
+    return created
+
+
+def fill_in_inputs() -> Any:
+    """Hypothesis strategy for ``fill_in``: 1–8 nodes, a set of distinct undirected edges (each
+    a list ``[a, b]`` in either orientation, no self-loops) and an elimination order (a
+    permutation of the nodes, as a list)."""
+    from hypothesis import strategies as st
+
+    def oriented(pair: tuple[int, int]) -> Any:
+        return st.sampled_from([[pair[0], pair[1]], [pair[1], pair[0]]])
+
+    def for_size(n: int) -> Any:
+        pairs = [(a, b) for a in range(n) for b in range(a + 1, n)]
+        if pairs:
+            chosen = st.lists(st.sampled_from(pairs), unique=True, max_size=len(pairs))
+            edges = chosen.flatmap(lambda es: st.tuples(*map(oriented, es)).map(list))
+        else:
+            edges = st.just([])
+        return st.fixed_dictionaries({"n": st.just(n), "edges": edges,
+                                      "order": st.permutations(list(range(n)))})
+
+    return st.integers(1, 8).flatmap(for_size)
+
+
+def mistake_fill_in_all_pairs(n: int, edges: Sequence[Pair], order: Sequence[int]) -> int:
+    """Counts every pair of remaining neighbours, including pairs already joined by an edge."""
+    adj = _adjacency(n, edges)
+    counted = 0
+    for v in order:
+        for a, b in combinations(sorted(adj[v]), 2):
+            counted += 1
+            adj[a].add(b)
+            adj[b].add(a)
+        for u in adj[v]:
+            adj[u].discard(v)
+        adj[v].clear()
+    return counted
+
+
+def mistake_fill_in_kept_eliminated(n: int, edges: Sequence[Pair], order: Sequence[int]) -> int:
+    """Never removes eliminated nodes, so they keep being treated as neighbours."""
+    adj = _adjacency(n, edges)
+    created = 0
+    for v in order:
+        for a, b in combinations(sorted(adj[v]), 2):
+            if b not in adj[a]:
+                adj[a].add(b)
+                adj[b].add(a)
+                created += 1
+    return created
+
+
+def mistake_fill_in_not_added(n: int, edges: Sequence[Pair], order: Sequence[int]) -> int:
+    """Counts the missing pairs but never adds them to the graph, so later eliminations do not
+    see the fill-in edges."""
+    adj = _adjacency(n, edges)
+    created = 0
+    for v in order:
+        created += sum(b not in adj[a] for a, b in combinations(sorted(adj[v]), 2))
+        for u in adj[v]:
+            adj[u].discard(v)
+        adj[v].clear()
+    return created
+
+
+# --- counting factors and variables ---------------------------------------------------------
+
+
+def factor_graph_counts(num_poses: int, num_landmarks: int, sightings: int) -> list[int]:
+    """``[factors, variables]``: one prior, ``num_poses − 1`` odometry factors and
+    ``num_landmarks · sightings`` observation factors; one variable per pose and landmark."""
+    factors = 1 + (num_poses - 1) + num_landmarks * sightings
+    return [factors, num_poses + num_landmarks]
+
+
+def mistake_counts_no_prior(num_poses: int, num_landmarks: int, sightings: int) -> list[int]:
+    """The prior on the first pose left out of the factors."""
+    factors, variables = factor_graph_counts(num_poses, num_landmarks, sightings)
+    return [factors - 1, variables]
+
+
+def mistake_counts_one_observation_each(num_poses: int, num_landmarks: int,
+                                        sightings: int) -> list[int]:
+    """One observation factor per landmark instead of one per sighting."""
+    return [1 + (num_poses - 1) + num_landmarks, num_poses + num_landmarks]
+
+
+def mistake_counts_poses_only(num_poses: int, num_landmarks: int, sightings: int) -> list[int]:
+    """Only the poses counted as variables."""
+    factors, _ = factor_graph_counts(num_poses, num_landmarks, sightings)
+    return [factors, num_poses]
+
+
+def constraint_dof(num_poses: int, num_landmarks: int, num_observations: int,
+                   pose_dof: int, landmark_dof: int) -> int:
+    """Scalar equations contributed by all factors: odometry and the prior constrain a full
+    pose (``pose_dof`` each), an observation ``landmark_dof`` numbers."""
+    odometry = num_poses - 1
+    return (odometry + 1) * pose_dof + num_observations * landmark_dof
+
+
+def mistake_dof_no_prior(num_poses: int, num_landmarks: int, num_observations: int,
+                         pose_dof: int, landmark_dof: int) -> int:
+    """The prior's equations left out."""
+    return constraint_dof(num_poses, num_landmarks, num_observations, pose_dof, landmark_dof) \
+        - pose_dof
+
+
+def mistake_dof_unknowns(num_poses: int, num_landmarks: int, num_observations: int,
+                         pose_dof: int, landmark_dof: int) -> int:
+    """The number of unknowns (variables' degrees of freedom) instead of constraints."""
+    return num_poses * pose_dof + num_landmarks * landmark_dof
+
+
+def mistake_dof_factor_count(num_poses: int, num_landmarks: int, num_observations: int,
+                             pose_dof: int, landmark_dof: int) -> int:
+    """The number of factors, each counted as one constraint."""
+    return num_poses + num_observations
+
+
+def star_fill_in(leaves: int) -> int:
+    """Fill-in of eliminating the centre of a star with ``leaves`` leaves first: k(k−1)/2."""
+    return fill_in(leaves + 1, [(0, k) for k in range(1, leaves + 1)], list(range(leaves + 1)))
+
+
+def mistake_star_ordered_pairs(leaves: int) -> int:
+    """``k(k−1)``: every pair counted twice, once in each direction."""
+    return leaves * (leaves - 1)
+
+
+def mistake_star_squared(leaves: int) -> int:
+    """``k²``: pairs of a leaf with itself counted too."""
+    return leaves * leaves
+
+
+def mistake_star_leaves(leaves: int) -> int:
+    """``k``: one new edge per leaf."""
+    return leaves

@@ -1,0 +1,22 @@
+# Sourced by start.sh and test.sh: system packages via apt when missing, then a venv in .venv
+# with slamcourse installed (EXTRAS selects pip extras, e.g. "[test]").
+export DEBIAN_FRONTEND=noninteractive PIP_DISABLE_PIP_VERSION_CHECK=1 PIP_NO_INPUT=1
+SUDO=""; [ "$(id -u)" -eq 0 ] || SUDO="sudo"
+PY="${PYTHON:-python3}"
+
+need=()
+command -v "$PY" >/dev/null 2>&1 || need+=(python3)
+command -v bwrap >/dev/null 2>&1 || need+=(bubblewrap)          # the learner-code sandbox
+"$PY" -c "import ensurepip, venv" >/dev/null 2>&1 || need+=(python3-venv)
+if [ "${#need[@]}" -gt 0 ] && command -v apt-get >/dev/null 2>&1; then
+  echo "==> apt-get install ${need[*]}" >&2
+  $SUDO apt-get update -qq
+  $SUDO apt-get install -y -qq --no-install-recommends "${need[@]}" >/dev/null
+fi
+
+if [ ! -x .venv/bin/python ] || ! .venv/bin/python -c "" 2>/dev/null; then
+  rm -rf .venv
+  "$PY" -m venv .venv
+fi
+echo "==> pip install -e .${EXTRAS:-}" >&2
+.venv/bin/python -m pip install -q -e ".${EXTRAS:-}"
