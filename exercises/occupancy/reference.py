@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from typing import Any
 
 
 def log_odds(p: float) -> float:
@@ -69,8 +70,19 @@ def update_ray(log_odds: Sequence[float], hit_index: int, l_occ: float,
     return out
 
 
-def ray_inputs_description() -> str:  # pragma: no cover - documentation only
-    return "see ray-update.yaml: arguments drawn there, hit_index < len(log_odds) by assume"
+def ray_inputs() -> Any:
+    """Hypothesis strategy for ``update_ray``: a row of 1–12 cells with log-odds in [−5, 5]
+    (a list), a hit cell inside the row, ``l_occ`` in [0.1, 3] and ``l_free`` in [−3, −0.1]."""
+    from hypothesis import strategies as st
+
+    value = st.floats(-5.0, 5.0, allow_nan=False, allow_infinity=False)
+    row = st.lists(value, min_size=1, max_size=12)
+    return row.flatmap(lambda cells: st.fixed_dictionaries({
+        "log_odds": st.just(cells),
+        "hit_index": st.integers(0, len(cells) - 1),
+        "l_occ": st.floats(0.1, 3.0, allow_nan=False, allow_infinity=False),
+        "l_free": st.floats(-3.0, -0.1, allow_nan=False, allow_infinity=False),
+    }))
 
 
 def mistake_ray_beyond_free(log_odds: Sequence[float], hit_index: int, l_occ: float,
