@@ -9,7 +9,7 @@ from pathlib import Path
 from slamcourse.course import templates, variants
 from slamcourse.course.loader import Course, load_course, relpath
 from slamcourse.course.model import ExerciseSpec
-from slamcourse.errors import CourseError, Problem
+from slamcourse.errors import CourseError, GraderError, Problem
 from slamcourse.kinds import get_kind
 
 
@@ -74,6 +74,8 @@ def validate_exercise(
             found = kind.self_test(spec, variant)
         except CourseError as exc:
             found = exc.problems
+        except GraderError as exc:  # e.g. the reference fails on an input the strategy drew
+            found = [Problem(relpath(spec.path, root_of(spec)), spec.line, str(exc))]
         checked += 1
         if report is not None:
             report.variants += 1
@@ -87,6 +89,10 @@ def validate_exercise(
         suffix = f" (in {times} of {checked} variants checked)" if checked > 1 and times > 1 else ""
         problems.append(Problem(p.path, p.line, p.message + suffix))
     return problems
+
+
+def root_of(spec: ExerciseSpec) -> Path:
+    return spec.course_root
 
 
 def _render_all(spec: ExerciseSpec, params: dict[str, object], answer: object) -> None:

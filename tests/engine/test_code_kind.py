@@ -173,3 +173,26 @@ def test_validator_runs_solution_starter_and_misconceptions(course_copy: Path) -
     ]
     assert any("the solution range_bearing.py fails" in p for p in problems), problems
     assert any("misconception 'no-heading' passes every test input" in p for p in problems)
+
+
+def test_require_isolation_without_namespaces_is_an_error_verdict(
+    capsys: pytest.CaptureFixture[str], tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.setenv("SLAMCOURSE_SANDBOX", "rlimits")
+    attempt = tmp_path / "mine.py"
+    attempt.write_text(CORRECT["math.hypot, unwrapped"])
+    code = main(["--course", str(FIXTURE_COURSE), "check", "basics/range-bearing", "--file",
+                 str(attempt), "--require-isolation", "--json"])
+    verdict = json.loads(capsys.readouterr().out)["verdict"]
+    assert code == 3
+    assert verdict["status"] == "error" and "grader" in verdict["feedback"]
+    # without the requirement the fallback grades, and says so
+    assert main(["--course", str(FIXTURE_COURSE), "check", "basics/range-bearing", "--file",
+                 str(attempt), "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["verdict"]["details"]["isolation"] == "rlimits"
+
+
+def test_doctor_reports_isolation(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["doctor", "--json"]) == 0
+    info = json.loads(capsys.readouterr().out)
+    assert info["isolation"] in ("namespaces", "rlimits") and info["isolation_reason"]

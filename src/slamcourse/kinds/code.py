@@ -179,21 +179,25 @@ class CodeKind(Kind):
         worker: Any = None,
     ) -> Verdict:
         """Grade learner ``source`` in a sandboxed worker (spawned here unless given)."""
+        from slamcourse.errors import GraderError
         from slamcourse.sandbox import Worker
 
         if len(source.encode("utf-8", "replace")) > MAX_SOURCE_BYTES:
             return Verdict.unreadable(f"{filename} is larger than {MAX_SOURCE_BYTES // 1024} KiB")
-        if worker is None:  # start the interpreter now; it imports numpy while we prepare
-            worker = Worker.spawn(require_isolation=require_isolation)
-        with worker:
-            strategy = self.strategy(spec)
-            opts: CodeOptions = spec.options
-            loaded = worker.load(source, filename, opts.function, opts.signature)
-            if not loaded.ok:
-                return _load_verdict(loaded, filename, opts)
-            return self._grade(
-                spec, worker.call, strategy, filename, isolation=worker.isolation.level
-            )
+        try:
+            if worker is None:  # start the interpreter now; it imports numpy while we prepare
+                worker = Worker.spawn(require_isolation=require_isolation)
+            with worker:
+                strategy = self.strategy(spec)
+                opts: CodeOptions = spec.options
+                loaded = worker.load(source, filename, opts.function, opts.signature)
+                if not loaded.ok:
+                    return _load_verdict(loaded, filename, opts)
+                return self._grade(
+                    spec, worker.call, strategy, filename, isolation=worker.isolation.level
+                )
+        except GraderError as exc:  # the grader's fault, said as such; no attempt is counted
+            return Verdict("error", 0.0, f"Not graded (a problem on the grader's side): {exc}")
 
     def _grade(
         self, spec: ExerciseSpec, call: Any, strategy: Any, filename: str, *, isolation: str
