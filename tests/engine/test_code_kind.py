@@ -181,14 +181,36 @@ def test_require_isolation_without_namespaces_is_an_error_verdict(
     monkeypatch.setenv("SLAMCOURSE_SANDBOX", "rlimits")
     attempt = tmp_path / "mine.py"
     attempt.write_text(CORRECT["math.hypot, unwrapped"])
-    code = main(["--course", str(FIXTURE_COURSE), "check", "basics/range-bearing", "--file",
-                 str(attempt), "--require-isolation", "--json"])
+    code = main(
+        [
+            "--course",
+            str(FIXTURE_COURSE),
+            "check",
+            "basics/range-bearing",
+            "--file",
+            str(attempt),
+            "--require-isolation",
+            "--json",
+        ]
+    )
     verdict = json.loads(capsys.readouterr().out)["verdict"]
     assert code == 3
     assert verdict["status"] == "error" and "grader" in verdict["feedback"]
     # without the requirement the fallback grades, and says so
-    assert main(["--course", str(FIXTURE_COURSE), "check", "basics/range-bearing", "--file",
-                 str(attempt), "--json"]) == 0
+    assert (
+        main(
+            [
+                "--course",
+                str(FIXTURE_COURSE),
+                "check",
+                "basics/range-bearing",
+                "--file",
+                str(attempt),
+                "--json",
+            ]
+        )
+        == 0
+    )
     assert json.loads(capsys.readouterr().out)["verdict"]["details"]["isolation"] == "rlimits"
 
 
@@ -196,3 +218,38 @@ def test_doctor_reports_isolation(capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["doctor", "--json"]) == 0
     info = json.loads(capsys.readouterr().out)
     assert info["isolation"] in ("namespaces", "rlimits") and info["isolation_reason"]
+
+
+def test_replayed_recording_gives_the_same_verdicts(private_home: Path) -> None:
+    """After a passing run, checks replay the recorded inputs; verdicts do not change."""
+    from slamcourse.grading import replay
+    from slamcourse.grading.properties import exercise_seed
+
+    key = replay.recording_key(SPEC, exercise_seed(SPEC.id), SPEC.options.max_examples)
+    assert replay.load(key) is None
+    first = grade(CORRECT["math.hypot, unwrapped"])  # full Hypothesis run, then recorded
+    inputs = replay.load(key)
+    assert inputs is not None and len(inputs) == first.details["examples"]
+    second = grade(CORRECT["numpy array, wrapped"])  # replayed
+    assert second.to_dict() == {**first.to_dict(), "feedback": second.feedback}
+    assert second.details["examples"] == first.details["examples"]
+    wrong = (
+        "import math\ndef range_bearing(dx, dy, theta):\n"
+        "    return math.hypot(dx, dy) + (0.1 if dx > 7 else 0), math.atan2(dy, dx) - theta\n"
+    )
+    replayed_failure = grade(wrong)  # fails on a replayed input -> the full run decides
+    (private_home / "cache").rename(private_home / "cache-moved")
+    fresh_failure = grade(wrong)  # no recording at all
+    assert replayed_failure.to_dict() == fresh_failure.to_dict()
+    assert replayed_failure.status == "failed"
+
+
+def test_a_broken_recording_is_ignored(private_home: Path) -> None:
+    from slamcourse.grading import replay
+    from slamcourse.grading.properties import exercise_seed
+
+    key = replay.recording_key(SPEC, exercise_seed(SPEC.id), SPEC.options.max_examples)
+    path = private_home / "cache" / "inputs" / f"{key}.json"
+    path.parent.mkdir(parents=True)
+    path.write_text("{not json")
+    assert grade(CORRECT["math.hypot, unwrapped"]).status == "passed"

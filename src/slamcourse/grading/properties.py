@@ -43,6 +43,8 @@ class Outcome:
     failure: Failure | None = None
     failures: list[Failure] = field(default_factory=list)
     seed: int = 0
+    drawn: list[dict[str, Any]] = field(default_factory=list)  # inputs, in the order tried
+    replayed: bool = False
 
     @property
     def passed(self) -> bool:
@@ -92,6 +94,8 @@ def run(
     from hypothesis import seed as fixed_seed
 
     outcome = Outcome(seed=seed)
+    drawn: list[dict[str, Any]] = []
+    outcome.drawn = drawn
 
     def record(failure: Failure) -> None:
         if len(outcome.failures) < MAX_RECORDED:
@@ -100,6 +104,7 @@ def run(
 
     def body(kwargs: dict[str, Any]) -> None:
         outcome.examples += 1
+        drawn.append(copy.deepcopy(kwargs))
         try:
             want = reference(**copy.deepcopy(kwargs))
         except Exception as exc:
@@ -152,6 +157,39 @@ def run(
         raise
     except Exception as exc:  # Hypothesis could not run (e.g. 'assume' rejects everything)
         raise GraderError(f"the property test could not run: {type(exc).__name__}: {exc}") from exc
+    return outcome
+
+
+def replay(
+    *,
+    inputs: Sequence[dict[str, Any]],
+    signature: Sequence[str],
+    returns: Any,
+    tolerance: Tolerance,
+    reference: Callable[..., Any],
+    call: Callable[[Sequence[Any]], CallResult],
+    seed: int,
+) -> Outcome | None:
+    """Check recorded inputs in order, without Hypothesis (see :mod:`.replay`).
+
+    Returns the passing outcome, or a fatal one (timeout, crash: the same input the full run
+    would stop at). Returns None at the first failing input: the caller then runs in full.
+    """
+    outcome = Outcome(seed=seed, replayed=True)
+    for kwargs in inputs:
+        outcome.examples += 1
+        try:
+            want = reference(**copy.deepcopy(kwargs))
+        except Exception:
+            return None  # the full run reports the reference's failure properly
+        result = call([kwargs[name] for name in signature])
+        if result.status in ("timeout", "crashed", "protocol_error"):
+            outcome.failure = Failure(
+                kwargs, want, None, result.error, result.status, stdout=result.stdout
+            )
+            return outcome
+        if result.status != "ok" or compare(returns, result.value, want, tolerance) is not None:
+            return None
     return outcome
 
 

@@ -188,35 +188,60 @@ class CodeKind(Kind):
             if worker is None:  # start the interpreter now; it imports numpy while we prepare
                 worker = Worker.spawn(require_isolation=require_isolation)
             with worker:
-                strategy = self.strategy(spec)
                 opts: CodeOptions = spec.options
                 loaded = worker.load(source, filename, opts.function, opts.signature)
                 if not loaded.ok:
                     return _load_verdict(loaded, filename, opts)
                 return self._grade(
-                    spec, worker.call, strategy, filename, isolation=worker.isolation.level
+                    spec, worker.call, None, filename, isolation=worker.isolation.level
                 )
         except GraderError as exc:  # the grader's fault, said as such; no attempt is counted
             return Verdict("error", 0.0, f"Not graded (a problem on the grader's side): {exc}")
 
     def _grade(
-        self, spec: ExerciseSpec, call: Any, strategy: Any, filename: str, *, isolation: str
+        self,
+        spec: ExerciseSpec,
+        call: Any,
+        strategy: Any,
+        filename: str,
+        *,
+        isolation: str,
+        use_recording: bool = True,
     ) -> Verdict:
+        from slamcourse.grading import replay as recording
         from slamcourse.grading.properties import exercise_seed, matching_misconception, run
+        from slamcourse.grading.properties import replay as replay_inputs
 
         opts: CodeOptions = spec.options
         ref = reference.function(spec, spec.reference or "", spec.reference_line)
-        outcome = run(
-            strategy=strategy,
-            examples=opts.examples,
-            signature=opts.signature,
-            returns=opts.returns,
-            tolerance=opts.tolerance,
-            reference=ref,
-            call=call,
-            max_examples=opts.max_examples,
-            seed=exercise_seed(spec.id),
-        )
+        seed = exercise_seed(spec.id)
+        key = recording.recording_key(spec, seed, opts.max_examples)
+        inputs = recording.load(key) if use_recording else None
+        outcome = None
+        if inputs:
+            outcome = replay_inputs(
+                inputs=inputs,
+                signature=opts.signature,
+                returns=opts.returns,
+                tolerance=opts.tolerance,
+                reference=ref,
+                call=call,
+                seed=seed,
+            )
+        if outcome is None:
+            outcome = run(
+                strategy=strategy if strategy is not None else self.strategy(spec),
+                examples=opts.examples,
+                signature=opts.signature,
+                returns=opts.returns,
+                tolerance=opts.tolerance,
+                reference=ref,
+                call=call,
+                max_examples=opts.max_examples,
+                seed=seed,
+            )
+            if outcome.passed and use_recording:
+                recording.save(key, outcome.drawn)
         details: dict[str, Any] = {
             "examples": outcome.examples,
             "seed": outcome.seed,
@@ -300,7 +325,12 @@ class CodeKind(Kind):
         for m in spec.misconceptions:
             fn = reference.function(spec, m.function or "", m.line)
             verdict = self._grade(
-                spec, TrustedCallee(fn).call, strategy, "reference.py", isolation="trusted"
+                spec,
+                TrustedCallee(fn).call,
+                strategy,
+                "reference.py",
+                isolation="trusted",
+                use_recording=False,
             )
             if verdict.passed:
                 problems.append(
