@@ -120,8 +120,11 @@ def gate_inputs() -> Any:
         dof = draw(st.sampled_from([1, 2]))
         confidence = draw(st.floats(0.5, 0.999))
         factor = draw(st.one_of(st.floats(0.02, 0.95), st.floats(1.05, 4.0)))
-        return {"d2": chi2_threshold(dof, confidence) * factor, "dof": dof,
-                "confidence": confidence}
+        return {
+            "d2": chi2_threshold(dof, confidence) * factor,
+            "dof": dof,
+            "confidence": confidence,
+        }
 
     return draw()
 

@@ -48,11 +48,6 @@ def mistake_random_walk_systematic(sigma: float, steps: int) -> float:
     return random_walk_systematic(sigma, steps)
 
 
-def mistake_random_walk_variance(sigma: float, steps: int) -> float:
-    """``σ²·k`` (numeric exercise)."""
-    return random_walk_variance(sigma, steps)
-
-
 def mistake_systematic_sqrt(bias: float, steps: int) -> float:
     """``b·√k``: a bias treated as if it were random noise."""
     return bias * math.sqrt(steps)
@@ -108,5 +103,6 @@ def lateral_drift_from_zero(step_length: float, heading_rate: float, steps: int)
 
 
 def lateral_drift_final_heading(step_length: float, heading_rate: float, steps: int) -> float:
-    """Wrong: the whole distance driven at the final heading error, ``steps·step·sin(rate·steps)``."""
+    """Wrong: the whole distance driven at the final heading error,
+    ``steps·step·sin(rate·steps)``."""
     return steps * step_length * math.sin(heading_rate * steps)

@@ -102,13 +102,14 @@ def mistake_omega_assigned(n: int, edges: Sequence[Edge]) -> NDArray[np.float64]
 # --- solving the information form -----------------------------------------------------------
 
 
-def solve_information(omega: Sequence[Sequence[float]], xi: Sequence[float]) -> NDArray[np.float64]:
+def solve_information(omega: Sequence[Sequence[float]],
+                      xi: Sequence[float]) -> NDArray[np.float64]:
     """``μ`` with ``Ω μ = ξ`` (``Ω`` symmetric positive definite, n × n; ``ξ`` length n)."""
     return np.linalg.solve(np.asarray(omega, dtype=float), np.asarray(xi, dtype=float))
 
 
 def information_system_inputs() -> Any:
-    """Hypothesis strategy for ``solve_information``: a connected 1-D pose graph anchored by a prior.
+    """Hypothesis strategy for ``solve_information``: a connected 1-D pose graph with a prior.
 
     A chain of odometry edges, a few extra (loop-closure) edges and a prior on pose 0 make ``Ω``
     symmetric, positive definite and weakly diagonally dominant; with at most 6 poses and
@@ -146,3 +147,77 @@ def mistake_solve_multiplied(omega: Sequence[Sequence[float]],
                              xi: Sequence[float]) -> NDArray[np.float64]:
     """``Ω ξ``: multiplied by Ω instead of solving (multiplying by Ω⁻¹)."""
     return np.asarray(omega, dtype=float) @ np.asarray(xi, dtype=float)
+
+
+# --- numeric exercises: the lesson's 3-pose loop and a long chain ---------------------------
+
+
+def loop_graph_omega(num_poses: int, prior: float, odo_info: float,
+                     loop_info: float) -> NDArray[np.float64]:
+    """``Ω`` of a chain ``0 → 1 → … → n−1`` (odometry, information ``odo_info``), a loop
+    closure ``0 → n−1`` (``loop_info``) and a prior ``prior`` on pose 0."""
+    edges = [(k, k + 1, odo_info) for k in range(num_poses - 1)]
+    edges.append((0, num_poses - 1, loop_info))
+    omega = build_omega(num_poses, edges)
+    omega[0, 0] += prior
+    return omega
+
+
+def omega_nonzero_count(num_poses: int) -> int:
+    """Nonzero entries of ``Ω`` for a chain with one loop closure from the last pose to the first
+    and a prior on the first (``num_poses ≥ 3``, so the loop is not an odometry pair)."""
+    return int(np.count_nonzero(loop_graph_omega(num_poses, 10.0, 1.0, 1.0)))
+
+
+def mistake_nonzeros_no_loop(num_poses: int) -> int:
+    """The loop closure's two off-diagonal entries forgotten: a tridiagonal count."""
+    return num_poses + 2 * (num_poses - 1)
+
+
+def mistake_nonzeros_one_triangle(num_poses: int) -> int:
+    """Each edge's off-diagonal entry counted once, as if Ω were not symmetric."""
+    return num_poses + (num_poses - 1) + 1
+
+
+def omega_first_diagonal(prior: float, odo_info: float, loop_info: float) -> float:
+    """``Ω[0, 0]`` of the lesson's 3-pose loop: the prior plus every edge touching pose 0."""
+    return float(loop_graph_omega(3, prior, odo_info, loop_info)[0, 0])
+
+
+def mistake_first_diagonal_no_prior(prior: float, odo_info: float, loop_info: float) -> float:
+    """The prior left out."""
+    return odo_info + loop_info
+
+
+def mistake_first_diagonal_no_loop(prior: float, odo_info: float, loop_info: float) -> float:
+    """The loop closure left out."""
+    return prior + odo_info
+
+
+def loop_graph_estimate(prior: float, xi0: float, xi1: float, xi2: float) -> NDArray[np.float64]:
+    """``μ`` solving ``Ω μ = ξ`` for the lesson's 3-pose loop (all edges ω = 1)."""
+    return solve_information(loop_graph_omega(3, prior, 1.0, 1.0).tolist(), [xi0, xi1, xi2])
+
+
+def mistake_estimate_diagonal_only(prior: float, xi0: float, xi1: float,
+                                   xi2: float) -> NDArray[np.float64]:
+    """``ξ_i / Ω_ii``: the couplings between the poses ignored."""
+    omega = loop_graph_omega(3, prior, 1.0, 1.0)
+    return np.array([xi0, xi1, xi2]) / np.diag(omega)
+
+
+def chain_block_percent(num_poses: int) -> float:
+    """Percentage of the ``N × N`` blocks of a chain's ``Ω`` that are nonzero: N diagonal blocks
+    and two mirrored blocks per odometry edge, ``(N + 2(N − 1)) / N²``."""
+    blocks = num_poses + 2 * (num_poses - 1)
+    return 100.0 * blocks / num_poses**2
+
+
+def mistake_chain_one_side(num_poses: int) -> float:
+    """Each edge's off-diagonal block counted once: ``(N + (N − 1)) / N²``."""
+    return 100.0 * (2 * num_poses - 1) / num_poses**2
+
+
+def mistake_chain_fraction(num_poses: int) -> float:
+    """The fraction, not the percentage."""
+    return chain_block_percent(num_poses) / 100.0

@@ -23,7 +23,7 @@ def log_odds(p: float) -> float:
     return math.log(p / (1 - p))
 
 
-def probability(l: float) -> float:  # noqa: E741 - l is the standard symbol
+def probability(l: float) -> float:
     """The probability ``1 / (1 + e^{−l})`` of the log-odds ``l``."""
     return 1 / (1 + math.exp(-l))
 
@@ -119,3 +119,77 @@ def mistake_ray_overwritten(log_odds: Sequence[float], hit_index: int, l_occ: fl
         out[k] = l_free
     out[hit_index] = l_occ
     return out
+
+
+# --- numeric exercises ----------------------------------------------------------------------
+
+
+def log_odds_of(p: float) -> float:
+    """``log(p / (1 − p))`` for the exercise parameter ``p``."""
+    return log_odds(p)
+
+
+def mistake_log_odds_log10(p: float) -> float:
+    """Base-10 logarithm instead of the natural one."""
+    return math.log10(p / (1 - p))
+
+
+def mistake_log_odds_log_p(p: float) -> float:
+    """``log p``: the log of the probability, not of the odds."""
+    return math.log(p)
+
+
+def mistake_log_odds_odds(p: float) -> float:
+    """``p / (1 − p)``: the odds, logarithm not taken."""
+    return p / (1 - p)
+
+
+def two_readings(p1: float, p2: float) -> list[float]:
+    """``[l, p]`` after fusing readings ``p1`` then ``p2`` into an uninformed cell (l = 0)."""
+    l1, _ = log_odds_update(0.0, p1)
+    return list(log_odds_update(l1, p2))
+
+
+def mistake_two_readings_averaged(p1: float, p2: float) -> list[float]:
+    """The two probabilities averaged."""
+    p = (p1 + p2) / 2
+    return [log_odds(p), p]
+
+
+def mistake_two_readings_multiplied(p1: float, p2: float) -> list[float]:
+    """The two probabilities multiplied."""
+    p = p1 * p2
+    return [log_odds(p), p]
+
+
+def readings_needed(sensor_prob: float, target: float) -> int:
+    """Fewest identical readings ``sensor_prob`` that take a cell from l = 0 to at least
+    ``target``: ``⌈logit(target) / logit(sensor_prob)⌉``."""
+    return math.ceil(log_odds(target) / log_odds(sensor_prob))
+
+
+def mistake_readings_floor(sensor_prob: float, target: float) -> int:
+    """Rounded down: the cell then stays just below the target."""
+    return math.floor(log_odds(target) / log_odds(sensor_prob))
+
+
+def mistake_readings_odds_ratio(sensor_prob: float, target: float) -> int:
+    """The odds divided instead of the log-odds, as if each reading added its odds."""
+    return math.ceil((target / (1 - target)) / (sensor_prob / (1 - sensor_prob)))
+
+
+def grid_megabytes(side: float, resolution: float, bytes_per_cell: float) -> float:
+    """Memory of a square grid ``side × side`` metres with cells ``resolution`` metres wide, in
+    megabytes (10⁶ bytes)."""
+    cells_per_side = round(side / resolution)
+    return cells_per_side**2 * bytes_per_cell / 1e6
+
+
+def mistake_grid_not_squared(side: float, resolution: float, bytes_per_cell: float) -> float:
+    """Only one row of cells counted."""
+    return round(side / resolution) * bytes_per_cell / 1e6
+
+
+def mistake_grid_kilobytes(side: float, resolution: float, bytes_per_cell: float) -> float:
+    """Bytes divided by 1000 only once (kilobytes reported as megabytes)."""
+    return grid_megabytes(side, resolution, bytes_per_cell) * 1000

@@ -68,8 +68,9 @@ def mistake_ransac_no_exponent(inlier_ratio: float, sample_size: int, confidence
 
 
 def epipolar_residual(E: Matrix, x: Vector, x2: Vector) -> float:
-    """``x′ᵀ E x`` for the essential matrix ``E`` (3 × 3), ``x`` in image 1 and ``x2`` in image 2."""
-    return float(np.asarray(x2, dtype=float) @ np.asarray(E, dtype=float) @ np.asarray(x, dtype=float))
+    """``x′ᵀ E x`` for the essential matrix ``E`` (3 × 3), ``x`` in image 1, ``x2`` in image 2."""
+    E_x = np.asarray(E, dtype=float) @ np.asarray(x, dtype=float)
+    return float(np.asarray(x2, dtype=float) @ E_x)
 
 
 def epipolar_inputs() -> Any:
@@ -254,3 +255,35 @@ def ransac_line_inputs() -> Any:
         return counts.count(max(counts)) == 1
 
     return data().filter(clean)
+
+
+# --- numeric exercises ----------------------------------------------------------------------
+
+
+def five_point_minimum() -> int:
+    """Correspondences needed for E: 6 parameters (3 rotation, 3 translation) minus 1 for the
+    unknown scale leave 5 degrees of freedom, and each correspondence gives one equation."""
+    rotation, translation, scale = 3, 3, 1
+    return rotation + translation - scale
+
+
+def mistake_five_point_eight() -> int:
+    """The 8 correspondences of the linear 8-point algorithm."""
+    return 8
+
+
+def mistake_five_point_six() -> int:
+    """The 6 pose parameters, forgetting that the scale cannot be recovered."""
+    return 6
+
+
+def scaled_translation(scale: float, dx: float, dy: float, dz: float,
+                       baseline: float) -> list[float]:
+    """The translation ``scale · t̂`` (metres) from a unit direction and a known scale."""
+    return [scale * dx, scale * dy, scale * dz]
+
+
+def mistake_translation_baseline(scale: float, dx: float, dy: float, dz: float,
+                                 baseline: float) -> list[float]:
+    """The stereo baseline used as the scale."""
+    return [baseline * dx, baseline * dy, baseline * dz]

@@ -193,6 +193,30 @@ def replay(
     return outcome
 
 
+def collect_failures(outcome: Outcome, *, inputs: Sequence[dict[str, Any]],
+                     signature: Sequence[str], returns: Any, tolerance: Tolerance,
+                     reference: Callable[..., Any],
+                     call: Callable[[Sequence[Any]], CallResult]) -> None:
+    """Add the inputs among ``inputs`` on which the callee returns a wrong value to
+    ``outcome.failures`` (evidence for recognising a misconception; the verdict's reported
+    failure stays the minimal one)."""
+    seen = [f.kwargs for f in outcome.failures]
+    for kwargs in inputs:
+        if kwargs in seen or len(outcome.failures) >= MAX_RECORDED:
+            continue
+        try:
+            want = reference(**copy.deepcopy(kwargs))
+        except Exception:
+            continue
+        result = call([kwargs[name] for name in signature])
+        if result.status != "ok":
+            if result.status in ("timeout", "crashed", "protocol_error"):
+                return
+            continue
+        if compare(returns, result.value, want, tolerance) is not None:
+            outcome.failures.append(Failure(kwargs, want, result.value, "", "mismatch"))
+
+
 def matching_misconception(
     outcome: Outcome,
     returns: Any,

@@ -209,7 +209,12 @@ class CodeKind(Kind):
         use_recording: bool = True,
     ) -> Verdict:
         from slamcourse.grading import replay as recording
-        from slamcourse.grading.properties import exercise_seed, matching_misconception, run
+        from slamcourse.grading.properties import (
+            collect_failures,
+            exercise_seed,
+            matching_misconception,
+            run,
+        )
         from slamcourse.grading.properties import replay as replay_inputs
 
         opts: CodeOptions = spec.options
@@ -291,6 +296,10 @@ class CodeKind(Kind):
         candidates = [
             (m.id, reference.function(spec, m.function or "", m.line)) for m in spec.misconceptions
         ]
+        if failure.kind == "mismatch":  # more evidence: every explicit edge example, in order
+            collect_failures(outcome, inputs=opts.examples, signature=opts.signature,
+                             returns=opts.returns, tolerance=opts.tolerance, reference=ref,
+                             call=call)
         found = matching_misconception(outcome, opts.returns, opts.tolerance, candidates)
         if found:
             m = next(m for m in spec.misconceptions if m.id == found)
