@@ -38,7 +38,9 @@ def test_yaml_errors_name_the_line() -> None:
 
 def test_template_filters() -> None:
     assert num(10609) == "10609" and num(0.141897) == "0.1419" and num(2.0, 3) == "2.000"
-    assert angle(math.pi / 4) == "π/4" and angle(-math.pi) == "-π" and angle(3 * math.pi / 2) == "3π/2"
+    assert (
+        angle(math.pi / 4) == "π/4" and angle(-math.pi) == "-π" and angle(3 * math.pi / 2) == "3π/2"
+    )
     assert angle(0.1419) == "0.1419"
     assert vec([0.3, -0.09]) == "[0.3, -0.09]"
     assert mat([[1, 0], [0, 1]]) == r"\begin{bmatrix} 1 & 0 \\ 0 & 1 \end{bmatrix}"
@@ -57,8 +59,15 @@ def test_longest_ordered_is_increasing_and_maximal(positions: list[int]) -> None
     run = longest_ordered(positions)
     values = [positions[i] for i in run]
     assert run == sorted(run) and values == sorted(values)
-    best = max((len(c) for r in range(len(positions) + 1)
-                for c in itertools.combinations(positions, r) if list(c) == sorted(c)), default=0)
+    best = max(
+        (
+            len(c)
+            for r in range(len(positions) + 1)
+            for c in itertools.combinations(positions, r)
+            if list(c) == sorted(c)
+        ),
+        default=0,
+    )
     assert len(run) == best
 
 
@@ -73,7 +82,8 @@ def test_watch_sees_a_save(tmp_path: Path, poll: bool) -> None:
 
     threading.Thread(target=save).start()
     assert wait_for_change(target, poll=poll, interval=0.05, timeout=10) == (
-        "polling" if poll else "inotify")
+        "polling" if poll else "inotify"
+    )
 
 
 def test_watch_times_out_without_a_save(tmp_path: Path) -> None:
