@@ -154,7 +154,7 @@ def _show_prompt(
         width = getattr(out, "width", 80)
         for row in textwrap.wrap(_math(prompt.how_to_answer), width=width):
             out.line(out.style(row, "dim"))
-    if variant.seed == 0:
+    if variant.seed == 0 and engine.exercise(exercise_id).has_variants:
         out.line(out.style("(canonical variant: the lesson's own numbers)", "dim"))
 
 
@@ -510,20 +510,21 @@ def cmd_doctor(args: argparse.Namespace, out: Out) -> int:
 
 def cmd_watch(args: argparse.Namespace, out: Out) -> int:
     """Re-grade a code exercise's file every time it is saved."""
-    from slamcourse.watch import wait_for_change
+    from slamcourse.watch import signature, wait_for_change
 
     with _engine(args) as engine:
         exercise_id = _target(engine, args.exercise)
         path, _ = engine.code_file(exercise_id)
         out.line(f"Watching {out.style(str(path), 'bold')} ({exercise_id}); Ctrl-C to stop.")
         while True:
+            before = signature(path)
             verdict = engine.check_code(exercise_id, path)
             print_verdict(out, verdict)
             if verdict.passed:
                 out.line(out.style("Explanation", "bold"))
                 out.markdown(engine.explanation(exercise_id, engine.variant(exercise_id)))
                 return 0
-            mechanism = wait_for_change(path, poll=args.poll)
+            mechanism = wait_for_change(path, poll=args.poll, since=before)
             out.line(out.style(f"changed ({mechanism}); checking…", "dim"))
 
 

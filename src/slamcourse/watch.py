@@ -22,23 +22,43 @@ def _signature(path: Path) -> tuple[int, int] | None:
     return st.st_mtime_ns, st.st_size
 
 
+def signature(path: Path) -> tuple[int, int] | None:
+    """What identifies one saved version of ``path`` (modification time and size)."""
+    return _signature(path)
+
+
 def wait_for_change(
-    path: Path, *, poll: bool = False, interval: float = 0.5, timeout: float | None = None
+    path: Path,
+    *,
+    poll: bool = False,
+    interval: float = 0.5,
+    timeout: float | None = None,
+    since: tuple[int, int] | None = None,
 ) -> str:
     """Block until ``path`` is written (or replaced, as editors do); returns the mechanism used
-    (``inotify`` or ``polling``). With ``timeout``, returns ``timeout`` when nothing changed."""
+    (``inotify`` or ``polling``). With ``timeout``, returns ``timeout`` when nothing changed.
+
+    ``since`` is the file's :func:`signature` when the caller last read it: a save that landed
+    in between (e.g. while the caller was grading) returns at once, as ``changed``.
+    """
     if not poll:
         fd = _inotify_watch(path.parent)
         if fd is not None:
             try:
+                if since is not None and _signature(path) != since:
+                    return "changed"
                 return _wait_inotify(fd, path, timeout)
             finally:
                 os.close(fd)
-    return _wait_polling(path, interval, timeout)
+    if since is not None and _signature(path) != since:
+        return "changed"
+    return _wait_polling(path, interval, timeout, since)
 
 
-def _wait_polling(path: Path, interval: float, timeout: float | None) -> str:
-    before = _signature(path)
+def _wait_polling(
+    path: Path, interval: float, timeout: float | None, since: tuple[int, int] | None = None
+) -> str:
+    before = since if since is not None else _signature(path)
     deadline = None if timeout is None else time.monotonic() + timeout
     while deadline is None or time.monotonic() < deadline:
         time.sleep(interval)

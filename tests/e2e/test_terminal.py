@@ -111,3 +111,24 @@ def test_code_exercise_in_next(private_home: Path) -> None:
     again = spawn(private_home, "--course", str(FIXTURE_COURSE), "goto", "basics/range-bearing")
     again.expect(pexpect.EOF)
     assert "math.hypot" in path.read_text()
+
+
+def test_watch_regrades_on_save(private_home: Path) -> None:
+    child = spawn(private_home, "--course", str(FIXTURE_COURSE), "watch", "basics/range-bearing")
+    child.expect(r"Watching (\S+\.py)")
+    path = Path(child.match.group(1))
+    child.expect_exact("NotImplementedError")  # the starter, graded at once
+    path.write_text(
+        "import math\n\ndef range_bearing(dx, dy, theta):\n"
+        "    return dx * dx + dy * dy, math.atan2(dy, dx) - theta\n"
+    )
+    child.expect(r"changed \((inotify|changed)\)")
+    child.expect_exact("squared range")  # the misconception, named
+    path.write_text(
+        "import math\n\ndef range_bearing(dx, dy, theta):\n"
+        "    return math.hypot(dx, dy), math.atan2(dy, dx) - theta\n"
+    )
+    child.expect_exact("✓ passed")
+    child.expect(pexpect.EOF)
+    child.close()
+    assert child.exitstatus == 0

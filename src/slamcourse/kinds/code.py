@@ -297,9 +297,15 @@ class CodeKind(Kind):
             (m.id, reference.function(spec, m.function or "", m.line)) for m in spec.misconceptions
         ]
         if failure.kind == "mismatch":  # more evidence: every explicit edge example, in order
-            collect_failures(outcome, inputs=opts.examples, signature=opts.signature,
-                             returns=opts.returns, tolerance=opts.tolerance, reference=ref,
-                             call=call)
+            collect_failures(
+                outcome,
+                inputs=opts.examples,
+                signature=opts.signature,
+                returns=opts.returns,
+                tolerance=opts.tolerance,
+                reference=ref,
+                call=call,
+            )
         found = matching_misconception(outcome, opts.returns, opts.tolerance, candidates)
         if found:
             m = next(m for m in spec.misconceptions if m.id == found)

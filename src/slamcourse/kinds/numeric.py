@@ -108,9 +108,10 @@ class NumberKind(Kind):
         return _parse_options(raw, check, vector=False)
 
     def expected(self, spec: ExerciseSpec, variant: Variant) -> float:
-        return _to_float(
+        value = _to_float(
             spec, call_reference(spec, variant), "the reference answer", spec.options.exact
         )
+        return round(value) if spec.options.exact else value  # 108, not 108.0, in templates
 
     def accepts(self, spec: ExerciseSpec, got: float, want: float) -> bool:
         opts: NumericOptions = spec.options
