@@ -292,7 +292,8 @@ class CodeKind(Kind):
                 f"Wrong result for {call_text}:\n  expected {show(to_plain(failure.expected))}"
                 f"\n  got      {show(failure.got)}\n  ({failure.message})"
             )
-        text += f"\n(smallest failing input found after {outcome.examples} test inputs)"
+        tried = f"{outcome.examples} test input{'s' if outcome.examples != 1 else ''}"
+        text += f"\n(smallest failing input found after {tried})"
         candidates = [
             (m.id, reference.function(spec, m.function or "", m.line)) for m in spec.misconceptions
         ]
