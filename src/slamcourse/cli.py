@@ -8,6 +8,7 @@ and the error's exit code. Heavy modules are imported inside commands, so ``chec
 from __future__ import annotations
 
 import argparse
+import functools
 import json
 import os
 import sys
@@ -57,12 +58,16 @@ class Out:
 
 
 def _width(stream: TextIO) -> int:
-    import shutil
-
+    """Columns to wrap at: $COLUMNS, else the terminal's width, else 80; within [40, 100]."""
     try:
-        columns = int(os.environ.get("COLUMNS", "0")) or shutil.get_terminal_size().columns
+        columns = int(os.environ.get("COLUMNS", "0"))
     except ValueError:
-        columns = 80
+        columns = 0
+    if not columns:
+        try:
+            columns = os.get_terminal_size(stream.fileno()).columns
+        except (AttributeError, OSError, ValueError):
+            columns = 80
     return max(40, min(columns, 100))
 
 
@@ -253,30 +258,52 @@ def _continue(out: Out) -> bool:
 
 
 def cmd_check(args: argparse.Namespace, out: Out) -> int:
-    with _engine(args, with_progress=not args.no_record) as engine:
-        if engine.exercise(args.exercise).kind == "code":
-            return _check_code(args, out, engine)
-        if args.file is not None:
-            raise UsageError(f"{args.exercise} is not a code exercise: use --answer TEXT")
-        if args.answer is None:
-            raise UsageError("give the answer with --answer TEXT (e.g. --answer 0.25)")
-        variant = _variant(engine, args, args.exercise)
-        verdict = engine.check(args.exercise, args.answer, variant, record=not args.no_record)
-        if args.json:
-            out.json(
-                {
-                    "exercise": args.exercise,
-                    "variant": variant.seed,
-                    "answer": args.answer,
-                    "verdict": verdict.to_dict(),
-                }
-            )
-        else:
-            print_verdict(out, verdict)
-        return verdict.exit_code
+    worker = _early_worker(args) if args.answer is None else None
+    try:
+        with _engine(args, with_progress=not args.no_record) as engine:
+            if engine.exercise(args.exercise).kind == "code":
+                return _check_code(args, out, engine, worker)
+            return _check_answer(args, out, engine)
+    finally:
+        if worker is not None:
+            worker.close()
 
 
-def _check_code(args: argparse.Namespace, out: Out, engine: Engine) -> int:
+def _check_answer(args: argparse.Namespace, out: Out, engine: Engine) -> int:
+    if args.file is not None:
+        raise UsageError(f"{args.exercise} is not a code exercise: use --answer TEXT")
+    if args.answer is None:
+        raise UsageError("give the answer with --answer TEXT (e.g. --answer 0.25)")
+    variant = _variant(engine, args, args.exercise)
+    verdict = engine.check(args.exercise, args.answer, variant, record=not args.no_record)
+    if args.json:
+        out.json(
+            {
+                "exercise": args.exercise,
+                "variant": variant.seed,
+                "answer": args.answer,
+                "verdict": verdict.to_dict(),
+            }
+        )
+    else:
+        print_verdict(out, verdict)
+    return verdict.exit_code
+
+
+def _early_worker(args: argparse.Namespace) -> Any:
+    """Start the sandbox worker before loading the course: without --answer this is a code
+    check (or a usage error, and the worker is closed), and the worker's interpreter then
+    imports numpy while this process loads the course and the reference code."""
+    from slamcourse.errors import SandboxError
+    from slamcourse.sandbox import Worker
+
+    try:
+        return Worker.spawn(require_isolation=args.require_isolation)
+    except SandboxError:
+        return None  # graded later, where the refusal becomes an `error` verdict
+
+
+def _check_code(args: argparse.Namespace, out: Out, engine: Engine, worker: Any = None) -> int:
     from pathlib import Path
 
     if args.answer is not None:
@@ -294,7 +321,11 @@ def _check_code(args: argparse.Namespace, out: Out, engine: Engine) -> int:
                 "then `next`) writes the starter; or pass --file PATH"
             )
     verdict = engine.check_code(
-        args.exercise, path, require_isolation=args.require_isolation, record=not args.no_record
+        args.exercise,
+        path,
+        require_isolation=args.require_isolation,
+        record=not args.no_record,
+        worker=worker,
     )
     if args.json:
         out.json({"exercise": args.exercise, "file": str(path), "verdict": verdict.to_dict()})
@@ -531,8 +562,37 @@ def cmd_watch(args: argparse.Namespace, out: Out) -> int:
 # ------------------------------------------------------------------------------ parser
 
 
-def build_parser() -> argparse.ArgumentParser:
+class _Unused:
+    """Stands in for the parser of a command that is not being run (building all fourteen
+    subparsers costs every command several milliseconds)."""
+
+    def add_argument(self, *args: Any, **kwargs: Any) -> None:
+        return None
+
+    def add_mutually_exclusive_group(self, **kwargs: Any) -> _Unused:
+        return self
+
+
+def requested_command(argv: Sequence[str]) -> str | None:
+    """The subcommand named in ``argv`` (after the global options), if any."""
+    args = iter(argv)
+    for arg in args:
+        if arg == "--course":
+            next(args, None)
+        elif arg.startswith("-"):
+            if arg in ("-h", "--help", "--version"):
+                return None
+        else:
+            return arg
+    return None
+
+
+def build_parser(only: str | None = None) -> argparse.ArgumentParser:
+    """The argument parser; with ``only``, just that subcommand is built in full."""
+    # An explicit width: argparse's default formatter imports shutil (and bz2, lzma) to find it.
+    formatter = functools.partial(argparse.HelpFormatter, width=_width(sys.stdout) - 2)
     parser = argparse.ArgumentParser(
+        formatter_class=formatter,
         prog="slamcourse",
         description="Learn classical SLAM by computing it: exercises with "
         "instant feedback, graded against numpy reference code.",
@@ -546,14 +606,14 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--no-color", action="store_true", help="plain output (also NO_COLOR=1)")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
 
-    def add(
-        name: str, fn: Callable[[argparse.Namespace, Out], int], help_: str, **kw: Any
-    ) -> argparse.ArgumentParser:
-        p = sub.add_parser(name, help=help_, description=help_, **kw)
+    def add(name: str, fn: Callable[[argparse.Namespace, Out], int], help_: str, **kw: Any) -> Any:
+        if only is not None and name != only:
+            return _Unused()
+        p = sub.add_parser(name, help=help_, description=help_, formatter_class=formatter, **kw)
         p.set_defaults(func=fn)
         return p
 
-    def variant_opts(p: argparse.ArgumentParser) -> None:
+    def variant_opts(p: Any) -> None:
         group = p.add_mutually_exclusive_group()
         group.add_argument(
             "--canonical", action="store_true", help="the lesson's own numbers (variant 0)"
@@ -618,9 +678,31 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+_COMMANDS = frozenset(
+    {
+        "next",
+        "check",
+        "show",
+        "hint",
+        "explain",
+        "giveup",
+        "list",
+        "status",
+        "goto",
+        "reset",
+        "watch",
+        "doctor",
+        "validate",
+    }
+)
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the CLI; the one exit point. Returns the process exit code."""
-    parser = build_parser()
+    argv = list(sys.argv[1:] if argv is None else argv)
+    wanted = requested_command(argv)
+    known = wanted in _COMMANDS
+    parser = build_parser(only=wanted if known else None)
     try:
         args = parser.parse_args(argv)
     except SystemExit as exc:  # argparse exits 2 on usage errors and 0 on --help

@@ -142,7 +142,13 @@ class Engine:
         return verdict
 
     def check_code(
-        self, exercise_id: str, path: Path, *, require_isolation: bool = False, record: bool = True
+        self,
+        exercise_id: str,
+        path: Path,
+        *,
+        require_isolation: bool = False,
+        record: bool = True,
+        worker: Any = None,
     ) -> Verdict:
         """Grade the learner's file ``path`` for a code exercise (sandboxed)."""
         import hashlib
@@ -153,7 +159,8 @@ class Engine:
         if spec.kind != "code":
             raise UsageError(f"{exercise_id} is a {spec.kind} exercise: answer it with --answer")
         source = read_source(path)
-        worker = self.pool.take() if self.pool is not None else None
+        if worker is None and self.pool is not None:
+            worker = self.pool.take()
         verdict: Verdict = get_kind("code").check_source(  # type: ignore[attr-defined]
             spec, source, path.name, require_isolation=require_isolation, worker=worker
         )

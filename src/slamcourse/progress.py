@@ -25,9 +25,9 @@ This module is imported by every CLI call, so it imports only the standard libra
 
 from __future__ import annotations
 
-import hashlib
 import os
 import sqlite3
+import sys
 from collections.abc import Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass
@@ -255,9 +255,18 @@ def default_home() -> Path:
     env = os.environ.get("SLAMCOURSE_HOME")
     if env:
         return Path(env).expanduser()
-    import platformdirs  # lazily: keeps `import slamcourse.progress` cheap
+    if _LINUX:
+        # platformdirs' own rule on Linux (XDG base directories), without its 15 ms import on
+        # every command; other platforms ask platformdirs.
+        xdg = os.environ.get("XDG_DATA_HOME", "").strip()
+        base = Path(xdg) if xdg and Path(xdg).is_absolute() else Path.home() / ".local" / "share"
+        return base / "slamcourse"
+    import platformdirs
 
     return Path(platformdirs.user_data_dir("slamcourse", appauthor=False))
+
+
+_LINUX: bool = sys.platform.startswith("linux")
 
 
 def default_db_path() -> Path:
@@ -487,11 +496,15 @@ class Progress:
     def variant_seed(self, exercise_id: str) -> int:
         """The learner's variant of ``exercise_id``: stable, in ``[1, 2**31 - 1]``, never 0.
 
-        Derived with SHA-256 from (learner seed, exercise id), so it survives restarts and
-        Python versions, and differs between learners and between exercises.
+        Derived from (learner seed, exercise id) by ``random.Random`` seeded with a string
+        (SHA-512 based, the same on every platform and Python version), so it survives
+        restarts and differs between learners and between exercises. (Not ``hashlib``: loading
+        OpenSSL would cost every command a few milliseconds.)
         """
-        digest = hashlib.sha256(f"{self._learner_seed}\x00{exercise_id}".encode()).digest()
-        return 1 + int.from_bytes(digest[:8], "big") % VARIANT_MAX
+        import random
+
+        stream = random.Random(f"{self._learner_seed}\x00{exercise_id}")
+        return 1 + stream.getrandbits(62) % VARIANT_MAX
 
     # -- exercise state ----------------------------------------------------------------------
 

@@ -40,8 +40,8 @@ def test_next_on_fixture_course(private_home: Path) -> None:
     child.sendline("")
     child.expect_exact("Angles are in radians")  # the chapter prose leading to it...
     child.expect_exact("A heading")  # ...then the exercise
-    child.sendline("pi/4")
-    child.expect_exact("✗ not yet")  # the learner's own variant is not the canonical one
+    child.sendline("-1")  # the heading of a point with dx, dy > 0 is in (0, π/2): always wrong
+    child.expect_exact("✗ not yet")
     child.sendline(":skip")
     child.expect_exact("A count")
     child.sendline(":quit")

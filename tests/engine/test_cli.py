@@ -92,3 +92,14 @@ def test_corrupt_progress_is_a_clear_error(
 def test_bad_course_path(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
     code = main(["--course", str(tmp_path), "list"])
     assert code == 2 and "is not a course" in capsys.readouterr().err
+
+
+def test_lazy_parser_knows_every_command() -> None:
+    """main() builds only the requested subcommand; its list of names must stay complete."""
+    from slamcourse import cli
+
+    full = cli.build_parser()
+    names = set(full._subparsers._group_actions[0].choices)  # type: ignore[union-attr]
+    assert names == cli._COMMANDS
+    assert cli.requested_command(["--course", "x", "--no-color", "show", "a/b"]) == "show"
+    assert cli.requested_command(["--help"]) is None

@@ -91,3 +91,44 @@ def test_watch_times_out_without_a_save(tmp_path: Path) -> None:
     target.write_text("a = 1\n")
     assert wait_for_change(target, timeout=0.2) == "timeout"
     assert wait_for_change(target, poll=True, interval=0.05, timeout=0.2) == "timeout"
+
+
+def test_substitution_fast_path_agrees_with_jinja_on_the_whole_course() -> None:
+    """Every template of the bundled course renders the same with or without Jinja2."""
+    from slamcourse.course import templates
+    from slamcourse.course.loader import load_course
+    from slamcourse.course.locate import bundled_course_root
+    from slamcourse.course.variants import variant
+    from slamcourse.kinds import get_kind
+
+    course = load_course(bundled_course_root())
+    fast_used = 0
+    for exercise_id in course.exercise_ids:
+        spec = course.exercise(exercise_id)
+        for seed in (0, 1, 2):
+            v = variant(spec, seed)
+            answer = get_kind(spec.kind).expected(spec, v)
+            texts = [spec.prompt, *spec.hints, *(m.message for m in spec.misconceptions)]
+            cases = [(t, dict(v.params)) for t in texts]
+            cases.append((spec.explanation, {**v.params, "answer": answer}))
+            for text, context in cases:
+                fast = templates.substitute(text.source, context)
+                if fast is None:
+                    continue
+                fast_used += 1
+                slow = templates._compile(text.source).render(**context)
+                assert fast.strip() == slow.strip(), (exercise_id, text.source)
+    assert fast_used > 100
+
+
+def test_substitution_declines_what_it_cannot_do() -> None:
+    from slamcourse.course.templates import substitute
+
+    assert substitute("x = {{ x | num(2) }} m", {"x": 1.23456}) == "x = 1.23 m"
+    assert substitute("{{ a + b }}", {"a": 1, "b": 2}) is None
+    assert substitute("{% if a %}y{% endif %}", {"a": 1}) is None
+    assert substitute("{{ missing }}", {}) is None
+    assert substitute("{{ x | upper }}", {"x": "a"}) is None
+    assert (
+        substitute(r"$\frac{1}{\sqrt{2}}$ and {{ x }}", {"x": 3}) == r"$\frac{1}{\sqrt{2}}$ and 3"
+    )

@@ -31,7 +31,6 @@ given variables and the constants ``pi``, ``e``, ``tau`` (a variable of the same
 from __future__ import annotations
 
 import ast
-import difflib
 import functools
 import keyword
 import math
@@ -369,6 +368,8 @@ def _suggest(name: str, options: Collection[str]) -> str:
     lower = {o.lower(): o for o in options}
     if name.lower() in lower:
         return f" (did you mean '{lower[name.lower()]}'?)"
+    import difflib  # only when suggesting a name
+
     close = difflib.get_close_matches(name, list(options), n=1)
     return f" (did you mean '{close[0]}'?)" if close else ""
 

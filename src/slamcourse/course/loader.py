@@ -8,7 +8,6 @@ Only what a command needs is read: ``check`` loads one YAML file and one referen
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -55,14 +54,33 @@ def relpath(path: Path, root: Path) -> str:
         return str(path)
 
 
-@dataclass
 class Course:
-    """A course folder: ordered chapters, and exercises loaded on demand (cached)."""
+    """A course folder: chapters (indexed on first use) and exercises (loaded on demand).
 
-    root: Path
-    chapters: list[Chapter]
-    problems: list[Problem] = field(default_factory=list)
-    _exercises: dict[str, ExerciseSpec] = field(default_factory=dict, repr=False)
+    ``check`` needs one exercise file and no index at all; ``next`` and ``list`` need the
+    chapter order; ``validate`` needs everything.
+    """
+
+    def __init__(self, root: Path) -> None:
+        self.root = root
+        self._chapters: list[Chapter] | None = None
+        self._problems: list[Problem] = []
+        self._exercises: dict[str, ExerciseSpec] = {}
+
+    def __repr__(self) -> str:
+        return f"Course({self.root})"
+
+    @property
+    def chapters(self) -> list[Chapter]:
+        if self._chapters is None:
+            self._chapters, self._problems = _index_course(self.root)
+        return self._chapters
+
+    @property
+    def problems(self) -> list[Problem]:
+        """Problems found while indexing the chapters."""
+        _ = self.chapters
+        return self._problems
 
     @property
     def exercise_ids(self) -> list[str]:
@@ -106,6 +124,11 @@ class Course:
 
 
 def load_course(root: Path) -> Course:
+    """The course at ``root`` (chapters are indexed when first needed)."""
+    return Course(root)
+
+
+def _index_course(root: Path) -> tuple[list[Chapter], list[Problem]]:
     """Index the chapters of the course at ``root`` (reads only the Markdown files)."""
     chapters: list[Chapter] = []
     problems: list[Problem] = []
@@ -154,7 +177,7 @@ def load_course(root: Path) -> Course:
                 "no chapters: add chapters/01-<id>.md (see docs/authoring.md)",
             )
         )
-    return Course(root, chapters, problems)
+    return chapters, problems
 
 
 def _index_chapter(path: Path, root: Path, number: int, problems: list[Problem]) -> Chapter:

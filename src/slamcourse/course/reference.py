@@ -2,11 +2,10 @@
 
 from __future__ import annotations
 
-import hashlib
 import importlib.util
 import inspect
 import sys
-import traceback
+import zlib
 from pathlib import Path
 from types import ModuleType
 from typing import Any
@@ -28,7 +27,7 @@ def module_for(spec: ExerciseSpec) -> ModuleType:
     if key in _modules:
         return _modules[key]
     rel = _rel(spec, spec.reference_path)
-    name = "slamcourse_reference_" + hashlib.sha1(repr(key).encode()).hexdigest()[:12]
+    name = f"slamcourse_reference_{zlib.crc32(repr(key).encode()):08x}_{len(_modules)}"
     loader_spec = importlib.util.spec_from_file_location(name, path)
     if loader_spec is None or loader_spec.loader is None or not path.is_file():
         raise CourseError(Problem(rel, None, "reference module not found"))
@@ -92,6 +91,8 @@ def call(spec: ExerciseSpec, name: str, line: int, kwargs: dict[str, Any]) -> An
 
 def _error_line(exc: BaseException, path: Path) -> int | None:
     line = None
+    import traceback  # only on errors
+
     for frame in traceback.extract_tb(exc.__traceback__):
         if Path(frame.filename).resolve() == path:
             line = frame.lineno

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import difflib
 from collections.abc import Collection
 from typing import Any
 
@@ -21,6 +20,8 @@ _TYPE_NAMES = {
 
 def suggest(word: str, known: Collection[str]) -> str:
     """`` — did you mean 'x'?`` for the nearest known word, or an empty string."""
+    import difflib  # only when there is something to suggest
+
     close = difflib.get_close_matches(word, sorted(known), n=1, cutoff=0.6)
     return f"; did you mean '{close[0]}'?" if close else ""
 
@@ -42,6 +43,8 @@ class Checker:
         suggested = set()
         for key in data:
             if key not in allowed:
+                import difflib
+
                 close = difflib.get_close_matches(key, sorted(allowed), n=1, cutoff=0.6)
                 suggested.update(close)
                 self.add(

@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import math
+import re
+from collections.abc import Callable
 from functools import lru_cache
 from typing import Any
 
@@ -65,10 +67,52 @@ def _compile(source: str) -> Any:
     return _environment().from_string(source)
 
 
+_SUBSTITUTION = re.compile(
+    r"\{\{\s*([A-Za-z_][A-Za-z0-9_]*)\s*(?:\|\s*(num|angle|vec|mat)\s*(?:\(\s*(\d+)\s*\))?\s*)?\}\}"
+)
+_FILTERS: dict[str, Callable[..., str]] = {"num": num, "angle": angle, "vec": vec, "mat": mat}
+
+
+def substitute(source: str, context: dict[str, Any]) -> str | None:
+    """Render a template made only of ``{{ name }}`` and ``{{ name | filter(n) }}`` without
+    loading Jinja2 (most prompts are exactly that); ``None`` when Jinja2 is needed: any other
+    tag, expression or filter, or a name the context lacks (Jinja2 then reports it)."""
+    if "{%" in source or "{#" in source:
+        return None
+    out: list[str] = []
+    pos = 0
+    for match in _SUBSTITUTION.finditer(source):
+        name, filt, arg = match.groups()
+        if "{{" in source[pos : match.start()] or name not in context:
+            return None
+        value = context[name]
+        if filt is None:
+            text = str(value)
+        elif arg is None:
+            text = _FILTERS[filt](value)
+        elif filt == "angle":  # angle takes no argument: let Jinja2 report it
+            return None
+        else:
+            text = _FILTERS[filt](value, int(arg))
+        out.append(source[pos : match.start()])
+        out.append(text)
+        pos = match.end()
+    if "{{" in source[pos:]:
+        return None
+    out.append(source[pos:])
+    return "".join(out)
+
+
 def render(spec: ExerciseSpec, text: Text, context: dict[str, Any]) -> str:
     """Render ``text`` from ``spec``; a template error is a :class:`CourseError` at its line."""
     if "{" not in text.source:  # plain text needs no template engine
         return text.source.strip()
+    try:
+        fast = substitute(text.source, context)
+    except (TypeError, ValueError):  # a filter given the wrong kind of value: let Jinja2 say so
+        fast = None
+    if fast is not None:
+        return fast.strip()
     import jinja2
 
     from slamcourse.course.loader import relpath

@@ -9,7 +9,6 @@ from __future__ import annotations
 import random
 from typing import Any
 
-from slamcourse.answers.expr import compile_expression
 from slamcourse.course.model import ExerciseSpec, ParamSpec, Variant
 from slamcourse.errors import AnswerFormatError, CourseError, Problem
 
@@ -76,6 +75,8 @@ def _value(
 
 
 def _evaluate(spec: ExerciseSpec, p: ParamSpec, text: str, known: dict[str, Any]) -> float:
+    from slamcourse.answers.expr import compile_expression
+
     try:
         return float(compile_expression(text, known.keys()).evaluate(known))
     except AnswerFormatError as exc:
@@ -83,6 +84,10 @@ def _evaluate(spec: ExerciseSpec, p: ParamSpec, text: str, known: dict[str, Any]
 
 
 def _failed_requirement(spec: ExerciseSpec, params: dict[str, Any]) -> Any:
+    if not spec.require:
+        return None
+    from slamcourse.answers.expr import compile_expression
+
     for req in spec.require:
         try:
             ok = compile_expression(req.source, params.keys(), logic=True).evaluate(params)

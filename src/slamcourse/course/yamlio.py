@@ -6,17 +6,14 @@ Mappings load as :class:`LineDict` (a ``dict`` that knows the line of each key) 
 
 from __future__ import annotations
 
+import json
+import os
+import zlib
+from functools import lru_cache
 from pathlib import Path
 from typing import Any
 
-import yaml
-
 from slamcourse.errors import CourseError, Problem
-
-try:  # the C parser is several times faster; fall back to pure Python where libyaml is missing
-    _Base: type = yaml.CSafeLoader
-except AttributeError:  # pragma: no cover - depends on how PyYAML was built
-    _Base = yaml.SafeLoader
 
 
 class LineDict(dict[str, Any]):
@@ -47,81 +44,176 @@ class LineList(list[Any]):
         return self.item_lines[index] if 0 <= index < len(self.item_lines) else self.line
 
 
-class _Loader(_Base):  # type: ignore[misc]
-    def __init__(self, stream: str, path: str) -> None:
-        super().__init__(stream)
-        self.path = path
-        self.problems: list[Problem] = []
+@lru_cache(maxsize=1)
+def _loader_class() -> Any:
+    """PyYAML's loader with our constructors; built (and PyYAML imported) on first parse."""
+    import yaml
 
+    base = getattr(yaml, "CSafeLoader", yaml.SafeLoader)  # the C parser where libyaml exists
 
-def _construct_map(loader: _Loader, node: yaml.MappingNode) -> LineDict:
-    data = LineDict()
-    data.line = node.start_mark.line + 1
-    data.key_lines, data.value_lines, data.block_keys = {}, {}, set()
-    loader.flatten_mapping(node)
-    for key_node, value_node in node.value:
-        key = loader.construct_object(key_node, deep=True)
-        line = key_node.start_mark.line + 1
-        if not isinstance(key, str):
-            key = str(key)
-        if key in data:
-            loader.problems.append(
-                Problem(
-                    loader.path,
-                    line,
-                    f"duplicate key '{key}' (first at line "
-                    f"{data.key_lines[key]}); remove one of them",
+    class Loader(base):  # type: ignore[misc, valid-type]
+        def __init__(self, stream: str, path: str) -> None:
+            super().__init__(stream)
+            self.path = path
+            self.problems: list[Problem] = []
+
+    def construct_map(loader: Any, node: Any) -> LineDict:
+        data = LineDict()
+        data.line = node.start_mark.line + 1
+        data.key_lines, data.value_lines, data.block_keys = {}, {}, set()
+        loader.flatten_mapping(node)
+        for key_node, value_node in node.value:
+            key = loader.construct_object(key_node, deep=True)
+            line = key_node.start_mark.line + 1
+            if not isinstance(key, str):
+                key = str(key)
+            if key in data:
+                loader.problems.append(
+                    Problem(
+                        loader.path,
+                        line,
+                        f"duplicate key '{key}' (first at line "
+                        f"{data.key_lines[key]}); remove one of them",
+                    )
                 )
-            )
-        data[key] = loader.construct_object(value_node, deep=True)
-        data.key_lines[key] = line
-        data.value_lines[key] = value_node.start_mark.line + 1
-        if isinstance(value_node, yaml.ScalarNode) and value_node.style in ("|", ">"):
-            data.block_keys.add(key)
-    return data
+            data[key] = loader.construct_object(value_node, deep=True)
+            data.key_lines[key] = line
+            data.value_lines[key] = value_node.start_mark.line + 1
+            if isinstance(value_node, yaml.ScalarNode) and value_node.style in ("|", ">"):
+                data.block_keys.add(key)
+        return data
 
+    def construct_seq(loader: Any, node: Any) -> LineList:
+        data = LineList(loader.construct_object(child, deep=True) for child in node.value)
+        data.line = node.start_mark.line + 1
+        data.item_lines = [child.start_mark.line + 1 for child in node.value]
+        return data
 
-def _construct_seq(loader: _Loader, node: yaml.SequenceNode) -> LineList:
-    data = LineList(loader.construct_object(child, deep=True) for child in node.value)
-    data.line = node.start_mark.line + 1
-    data.item_lines = [child.start_mark.line + 1 for child in node.value]
-    return data
-
-
-_Loader.add_constructor("tag:yaml.org,2002:map", _construct_map)
-_Loader.add_constructor("tag:yaml.org,2002:seq", _construct_seq)
+    Loader.add_constructor("tag:yaml.org,2002:map", construct_map)
+    Loader.add_constructor("tag:yaml.org,2002:seq", construct_seq)
+    return Loader
 
 
 def load_yaml(text: str, path: str | Path, *, first_line: int = 1) -> Any:
     """Parse ``text`` (from ``path``); raise :class:`CourseError` for syntax errors or duplicates.
 
     ``first_line`` shifts reported lines when ``text`` is a fragment (e.g. front matter).
+    A parse is cached by content (see :func:`_cached`), so PyYAML is imported only for files
+    that changed since they were last read.
     """
-    loader = _Loader(text, str(path))
+    data = _cached(text)
+    if data is _MISSING:
+        try:
+            data = _parse(text, str(path))
+        except CourseError as exc:
+            if first_line == 1:
+                raise
+            by = first_line - 1
+            raise CourseError(
+                [
+                    Problem(p.path, p.line + by if p.line else p.line, p.message)
+                    for p in exc.problems
+                ]
+            ) from None
+        _store(text, data)
+    if first_line != 1:
+        _shift(data, first_line - 1)
+    return data
+
+
+def _parse(text: str, path: str) -> Any:
+    import yaml
+
+    loader = _loader_class()(text, path)
     try:
         data = loader.get_single_data()
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
-        line = mark.line + first_line if mark else None
         raise CourseError(
             Problem(
-                str(path),
-                line,
-                f"YAML syntax error: {exc.problem or exc.context}; check "
-                "indentation and quote strings that contain ': ' or start with a symbol",
+                path,
+                mark.line + 1 if mark else None,
+                f"YAML syntax error: {exc.problem or exc.context}; check indentation and "
+                "quote strings that contain ': ' or start with a symbol",
             )
         ) from None
     except yaml.YAMLError as exc:
-        raise CourseError(Problem(str(path), None, f"YAML error: {exc}")) from None
+        raise CourseError(Problem(path, None, f"YAML error: {exc}")) from None
     finally:
         loader.dispose()
-    if first_line != 1:
-        _shift(data, first_line - 1)
-        for i, p in enumerate(loader.problems):
-            loader.problems[i] = Problem(p.path, (p.line or 0) + first_line - 1, p.message)
     if loader.problems:
         raise CourseError(loader.problems)
     return data
+
+
+# ---------------------------------------------------------------- the parse cache
+# Parsed files are kept as JSON in <home>/cache/yaml/, named by a checksum of the text and
+# holding the text itself, so an entry is used only for exactly the same text (like .pyc files,
+# but keyed by content). Files that did not parse are never cached.
+
+_MISSING = object()
+
+
+def _cache_file(text: str) -> Path:
+    from slamcourse.progress import default_home
+
+    data = text.encode("utf-8", "surrogatepass")
+    name = f"{zlib.crc32(data):08x}{zlib.adler32(data):08x}{len(data):x}.json"
+    return default_home() / "cache" / "yaml" / name
+
+
+def _cached(text: str) -> Any:
+    try:
+        entry = json.loads(_cache_file(text).read_text(encoding="utf-8"))
+        if entry["text"] != text:
+            return _MISSING
+        return _decode(entry["data"])
+    except (OSError, ValueError, KeyError, TypeError):
+        return _MISSING
+
+
+def _store(text: str, data: Any) -> None:
+    try:
+        payload = json.dumps({"text": text, "data": _encode(data)})
+    except (TypeError, ValueError):  # e.g. a YAML date: simply not cached
+        return
+    path = _cache_file(text)
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        tmp = path.with_name(f".{path.name}.{os.getpid()}")
+        tmp.write_text(payload, encoding="utf-8")
+        os.replace(tmp, path)
+    except OSError:
+        return
+
+
+def _encode(value: Any) -> Any:
+    if isinstance(value, LineDict):
+        return {
+            "d": [[k, _encode(v)] for k, v in value.items()],
+            "l": value.line,
+            "kl": value.key_lines,
+            "vl": value.value_lines,
+            "b": sorted(value.block_keys),
+        }
+    if isinstance(value, LineList):
+        return {"s": [_encode(v) for v in value], "l": value.line, "il": value.item_lines}
+    if value is None or isinstance(value, bool | int | float | str):
+        return value
+    raise TypeError(type(value).__name__)
+
+
+def _decode(value: Any) -> Any:
+    if isinstance(value, dict):
+        if "d" in value:
+            out = LineDict((k, _decode(v)) for k, v in value["d"])
+            out.line, out.key_lines = value["l"], value["kl"]
+            out.value_lines, out.block_keys = value["vl"], set(value["b"])
+            return out
+        items = LineList(_decode(v) for v in value["s"])
+        items.line, items.item_lines = value["l"], value["il"]
+        return items
+    return value
 
 
 def _shift(data: Any, by: int) -> None:
