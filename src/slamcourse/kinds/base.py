@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from abc import ABC, abstractmethod
 from typing import Any, ClassVar
 
 from slamcourse.course import reference, templates
@@ -13,7 +14,7 @@ from slamcourse.errors import CourseError, Problem
 from slamcourse.verdict import Verdict
 
 
-class Kind:
+class Kind(ABC):
     """Base class of exercise kinds (stateless; one shared instance per kind)."""
 
     name: ClassVar[str] = ""
@@ -47,13 +48,14 @@ class Kind:
                 )
         return None
 
-    # ---- answering
+    # ---- answering (every kind implements these two)
+    @abstractmethod
     def expected(self, spec: ExerciseSpec, variant: Variant) -> Any:
         """The reference answer of ``variant``."""
-        raise NotImplementedError
 
+    @abstractmethod
     def check(self, spec: ExerciseSpec, variant: Variant, answer: str) -> Verdict:
-        raise NotImplementedError
+        """Grade ``answer``; a learner's mistake is a verdict, never an exception."""
 
     def how_to_answer(self, spec: ExerciseSpec, variant: Variant) -> str:
         """One line telling the learner what form of answer is expected and what is accepted."""
