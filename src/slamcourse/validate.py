@@ -75,7 +75,7 @@ def validate_exercise(
         except CourseError as exc:
             found = exc.problems
         except GraderError as exc:  # e.g. the reference fails on an input the strategy drew
-            found = [Problem(relpath(spec.path, root_of(spec)), spec.line, str(exc))]
+            found = [Problem(relpath(spec.path, spec.course_root), spec.line, str(exc))]
         checked += 1
         if report is not None:
             report.variants += 1
@@ -89,10 +89,6 @@ def validate_exercise(
         suffix = f" (in {times} of {checked} variants checked)" if checked > 1 and times > 1 else ""
         problems.append(Problem(p.path, p.line, p.message + suffix))
     return problems
-
-
-def root_of(spec: ExerciseSpec) -> Path:
-    return spec.course_root
 
 
 def _render_all(spec: ExerciseSpec, params: dict[str, object], answer: object) -> None:

@@ -30,6 +30,15 @@ def require_level(level: str) -> None:
             pytest.skip(message)
 
 
+def require_process_limit(process_limit: str) -> None:
+    """Skip (or fail under CI) when this machine gives the sandbox no process limit."""
+    if process_limit.startswith("none"):
+        message = f"no process limit here: {process_limit}"
+        if os.environ.get("CI"):
+            pytest.fail(message + " (CI is set: the process-limit tests must run)")
+        pytest.skip(message)
+
+
 @pytest.fixture(params=LEVELS)
 def level(request: pytest.FixtureRequest) -> str:
     value: str = request.param

@@ -26,6 +26,7 @@ import pytest
 
 import slamcourse
 from slamcourse.sandbox import Limits, LoadResult, Unsupported, Worker, probe_isolation
+from tests.sandbox.conftest import require_process_limit
 
 MakeWorker = Callable[..., tuple[Worker, LoadResult]]  # the make_worker fixture (conftest.py)
 FAST = Limits(call_seconds=1.0)
@@ -157,8 +158,7 @@ def test_memory_bomb(make_worker: MakeWorker, allocation: str) -> None:
 
 def test_fork_bomb_is_limited_and_cleaned_up(make_worker: MakeWorker, level: str) -> None:
     report = probe_isolation(level)
-    if report.process_limit.startswith("none"):
-        pytest.skip(f"no process limit here: {report.process_limit}")
+    require_process_limit(report.process_limit)
     token = sleep_token()
     worker, loaded = make_worker(
         f"""
@@ -196,8 +196,7 @@ def test_fork_bomb_is_limited_and_cleaned_up(make_worker: MakeWorker, level: str
 
 def test_thread_bomb_is_limited(make_worker: MakeWorker, level: str) -> None:
     report = probe_isolation(level)
-    if report.process_limit.startswith("none"):
-        pytest.skip(f"no process limit here: {report.process_limit}")
+    require_process_limit(report.process_limit)
     worker, _ = make_worker(
         """
         import threading

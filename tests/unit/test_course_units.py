@@ -132,3 +132,25 @@ def test_substitution_declines_what_it_cannot_do() -> None:
     assert (
         substitute(r"$\frac{1}{\sqrt{2}}$ and {{ x }}", {"x": 3}) == r"$\frac{1}{\sqrt{2}}$ and 3"
     )
+
+
+def test_distribution_entries_are_checked_in_one_place() -> None:
+    from slamcourse.course.schema import Checker
+
+    forms = {"int": "int-range", "uniform": "range", "choice": "list", "expr": "text"}
+    check = Checker("f.yaml")
+    doc = load_yaml(
+        "a: {uniform: [-1, 2.5]}\nb: {int: [1, 2.5]}\nc: {choice: []}\nd: {uniform: [3, 1]}\n"
+        "e: {int: [1, 3], expr: x}\nf: {expr: 2*x}\n",
+        "f.yaml",
+    )
+    assert check.distribution(doc["a"], forms, "a") == ("uniform", (-1, 2.5))
+    assert check.distribution(doc["f"], forms, "f") == ("expr", ("2*x",))
+    for key in "bcde":
+        assert check.distribution(doc[key], forms, key) is None
+    assert [str(p) for p in check.problems] == [
+        "f.yaml:2: 'int' of b must be [low, high], whole numbers with low ≤ high",
+        "f.yaml:3: 'choice' of c must be a non-empty list",
+        "f.yaml:4: 'uniform' of d must be [low, high], numbers with low ≤ high",
+        "f.yaml:5: e needs exactly one of int, uniform, choice, expr (found int, expr)",
+    ]

@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import re
 from pathlib import Path
-from typing import Any
 
 from slamcourse.course.model import (
     FORMAT_VERSION,
@@ -399,7 +398,7 @@ def _tolerance(raw: LineDict, check: Checker) -> Tolerance:
     return Tolerance(float(rtol), float(atol))
 
 
-_DISTS = ("int", "uniform", "choice", "value", "expr")
+_DISTS = {"int": "int-range", "uniform": "range", "choice": "list", "value": "any", "expr": "text"}
 
 
 def _parameters(raw: LineDict, check: Checker) -> tuple[ParamSpec, ...]:
@@ -418,45 +417,10 @@ def _parameters(raw: LineDict, check: Checker) -> tuple[ParamSpec, ...]:
         if item is None:
             continue
         check.keys(item, {*_DISTS, "canonical", "round"}, (), f"parameter '{name}'")
-        dists = [d for d in _DISTS if d in item]
-        if len(dists) != 1:
-            check.add(
-                line,
-                f"parameter '{name}' needs exactly one of {', '.join(_DISTS)} "
-                f"(found {', '.join(dists) or 'none'})",
-            )
+        found = check.distribution(item, _DISTS, f"parameter '{name}'")
+        if found is None:
             continue
-        dist = dists[0]
-        arg = item[dist]
-        args: tuple[Any, ...]
-        if dist in ("int", "uniform"):
-            if (
-                not isinstance(arg, list)
-                or len(arg) != 2
-                or not all(isinstance(a, int | float) and not isinstance(a, bool) for a in arg)
-                or arg[0] > arg[1]
-            ):
-                check.add(
-                    item.line_of(dist),
-                    f"'{dist}' of '{name}' must be [low, high] numbers with low ≤ high",
-                )
-                continue
-            if dist == "int" and not all(isinstance(a, int) for a in arg):
-                check.add(item.line_of(dist), f"'int' range of '{name}' needs whole numbers")
-                continue
-            args = tuple(arg)
-        elif dist == "choice":
-            if not isinstance(arg, list) or not arg:
-                check.add(item.line_of(dist), f"'choice' of '{name}' must be a non-empty list")
-                continue
-            args = tuple(arg)
-        elif dist == "expr":
-            if not isinstance(arg, str):
-                check.add(item.line_of(dist), f"'expr' of '{name}' must be an expression as text")
-                continue
-            args = (arg,)
-        else:
-            args = (arg,)
+        dist, args = found
         if dist in ("int", "uniform", "choice") and "canonical" not in item:
             check.add(
                 line,

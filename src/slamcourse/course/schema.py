@@ -73,6 +73,45 @@ class Checker:
             return default
         return value
 
+    def distribution(
+        self, item: LineDict, forms: dict[str, str], what: str
+    ) -> tuple[str, tuple[Any, ...]] | None:
+        """The one ``dist: argument`` entry of ``item`` (e.g. ``uniform: [-5, 5]``), checked
+        against its form, or None (reported). ``forms`` maps each allowed key to ``range``
+        (two numbers, low ≤ high), ``int-range`` (two whole numbers), ``list`` (non-empty),
+        ``text`` or ``any``."""
+        found = [d for d in forms if d in item]
+        if len(found) != 1:
+            self.add(
+                item.line,
+                f"{what} needs exactly one of {', '.join(forms)} "
+                f"(found {', '.join(found) or 'none'})",
+            )
+            return None
+        dist = found[0]
+        arg, form, line = item[dist], forms[dist], item.line_of(dist)
+        if form in ("range", "int-range"):
+            number = int if form == "int-range" else (int, float)
+            if (
+                not isinstance(arg, list)
+                or len(arg) != 2
+                or not all(isinstance(a, number) and not isinstance(a, bool) for a in arg)
+                or arg[0] > arg[1]
+            ):
+                kind = "whole numbers" if form == "int-range" else "numbers"
+                self.add(line, f"'{dist}' of {what} must be [low, high], {kind} with low ≤ high")
+                return None
+            return dist, tuple(arg)
+        if form == "list":
+            if not isinstance(arg, list) or not arg:
+                self.add(line, f"'{dist}' of {what} must be a non-empty list")
+                return None
+            return dist, tuple(arg)
+        if form == "text" and not isinstance(arg, str):
+            self.add(line, f"'{dist}' of {what} must be a formula written as text")
+            return None
+        return dist, (arg,)
+
     def mapping(self, value: Any, line: int, what: str) -> LineDict | None:
         if isinstance(value, LineDict):
             return value

@@ -16,12 +16,13 @@ from slamcourse.course import reference
 from slamcourse.course.model import ExerciseSpec, Tolerance, Variant
 from slamcourse.course.schema import Checker
 from slamcourse.course.yamlio import LineDict, LineList
-from slamcourse.errors import CourseError, Problem
-from slamcourse.kinds.base import Kind, course_error, problem, render
+from slamcourse.errors import Problem
+from slamcourse.kinds.base import Kind, problem, render
 from slamcourse.verdict import Verdict
 
 CODE_TOLERANCE = Tolerance(rtol=1e-6, atol=1e-9)
 MAX_SOURCE_BYTES = 256 * 1024
+_ARGUMENT_FORMS = {"float": "range", "int": "int-range", "choice": "list"}
 _IDENT = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 
 
@@ -91,16 +92,11 @@ class CodeKind(Kind):
                 item = check.mapping(value, line, f"argument '{name}'")
                 if item is None:
                     continue
-                check.keys(item, {"float", "int", "choice"}, (), f"argument '{name}'")
-                dists = [d for d in ("float", "int", "choice") if d in item]
-                if len(dists) != 1 or not isinstance(item[dists[0]], list) or not item[dists[0]]:
-                    check.add(
-                        line,
-                        f"argument '{name}' needs one of float: [lo, hi], "
-                        "int: [lo, hi] or choice: [...]",
-                    )
+                check.keys(item, _ARGUMENT_FORMS, (), f"argument '{name}'")
+                found = check.distribution(item, _ARGUMENT_FORMS, f"argument '{name}'")
+                if found is None:
                     continue
-                arguments.append(Argument(name, dists[0], tuple(item[dists[0]]), line))
+                arguments.append(Argument(name, found[0], found[1], line))
             if set(a.name for a in arguments) != set(signature):
                 check.add(
                     raw.line_of("arguments"),
@@ -418,6 +414,3 @@ def read_source(path: Path) -> str:
     except OSError as exc:
         raise UsageError(f"cannot read {path}: {exc.strerror}") from None
     return data.decode("utf-8", errors="replace")
-
-
-__all__ = ["CodeKind", "CourseError", "course_error", "read_source"]

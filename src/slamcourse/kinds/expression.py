@@ -21,6 +21,7 @@ from slamcourse.kinds.base import (
 from slamcourse.verdict import Verdict
 
 EXPRESSION_TOLERANCE = Tolerance(rtol=1e-6, atol=1e-9)
+_FORMS = {"uniform": "range", "int": "int-range", "expr": "text"}
 
 
 @dataclass(frozen=True)
@@ -54,28 +55,11 @@ class ExpressionKind(Kind):
             item = check.mapping(value, line, f"variable '{name}'")
             if item is None:
                 continue
-            check.keys(item, {"uniform", "int", "expr"}, (), f"variable '{name}'")
-            dists = [d for d in ("uniform", "int", "expr") if d in item]
-            if len(dists) != 1:
-                check.add(line, f"variable '{name}' needs exactly one of uniform, int, expr")
+            check.keys(item, _FORMS, (), f"variable '{name}'")
+            found = check.distribution(item, _FORMS, f"variable '{name}'")
+            if found is None:
                 continue
-            arg = item[dists[0]]
-            if dists[0] == "expr":
-                if not isinstance(arg, str):
-                    check.add(line, f"'expr' of variable '{name}' must be a formula as text")
-                    continue
-                args: tuple[Any, ...] = (arg,)
-            elif (
-                isinstance(arg, list)
-                and len(arg) == 2
-                and arg[0] <= arg[1]
-                and all(isinstance(a, int | float) for a in arg)
-            ):
-                args = tuple(arg)
-            else:
-                check.add(line, f"'{dists[0]}' of variable '{name}' must be [low, high]")
-                continue
-            variables.append(Variable(name, dists[0], args, line))
+            variables.append(Variable(name, found[0], found[1], line))
         points = check.typed(raw, "points", int, 50)
         if points < 5:
             check.add(raw.line_of("points"), "'points' must be at least 5")
