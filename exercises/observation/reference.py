@@ -150,6 +150,13 @@ def mistake_bearing_heading_ignored(
     return math.atan2(yj - yr, xj - xr)
 
 
+def mistake_bearing_heading_added(
+    xr: float, yr: float, thr: float, xj: float, yj: float
+) -> float:
+    """``atan2(Δy, Δx) + θ_r``: the heading added instead of subtracted (a sign slip)."""
+    return math.atan2(yj - yr, xj - xr) + thr
+
+
 def mistake_innovation_reversed(z_r: float, z_b: float, h_r: float, h_b: float) -> list[float]:
     """``h − z``: predicted minus measured, the sign of the innovation flipped."""
     return [-v for v in innovation(z_r, z_b, h_r, h_b)]

@@ -184,7 +184,7 @@ def _show_prompt(out: Out, engine: Engine, prompt: Prompt, *, context: bool) -> 
         if prose:
             out.markdown(prose)
             out.line()
-    out.line(out.style(prompt.title, "bold", "cyan"))
+    out.line(out.style(_math(prompt.title), "bold", "cyan"))
     out.markdown(prompt.text)
     if prompt.kind in ("choice", "multi", "order", "line"):
         listing = _form_markdown(out, prompt.form)
@@ -396,7 +396,8 @@ def cmd_list(args: argparse.Namespace, out: Out) -> int:
             )
             for row in ch["exercises"]:
                 pointer = out.style(" ← next", "cyan") if row["current"] else ""
-                out.line(f"    {marks[row['status']]} {row['id']:<40} {row['title']}{pointer}")
+                title = _math(row["title"])
+                out.line(f"    {marks[row['status']]} {row['id']:<40} {title}{pointer}")
         return 0
 
 
@@ -453,7 +454,19 @@ def cmd_validate(args: argparse.Namespace, out: Out) -> int:
     from slamcourse.validate import validate_course
 
     root = course_root(args.path or args.course)
-    report = validate_course(root, variants_per_exercise=args.variants)
+    progress = None
+    if sys.stderr.isatty() and not args.json:  # a live line on a terminal; nothing in logs
+
+        def progress(exercise_id: str) -> None:
+            sys.stderr.write(f"\r\033[2Kvalidating {exercise_id} …")
+            sys.stderr.flush()
+
+    try:
+        report = validate_course(root, variants_per_exercise=args.variants, progress=progress)
+    finally:
+        if progress is not None:
+            sys.stderr.write("\r\033[2K")
+            sys.stderr.flush()
     if args.json:
         out.json(
             {
@@ -543,15 +556,27 @@ def requested_command(argv: Sequence[str]) -> str | None:
     return None
 
 
+def _environment_help() -> str:
+    from slamcourse.settings import ENVIRONMENT
+
+    width = max(len(name) for name, _ in ENVIRONMENT)
+    rows = "\n".join(f"  {name:<{width}}  {text}" for name, text in ENVIRONMENT)
+    return "environment variables:\n" + rows
+
+
 def build_parser(only: str | None = None) -> argparse.ArgumentParser:
     """The argument parser; with ``only``, just that subcommand is built in full."""
     # An explicit width: argparse's default formatter imports shutil (and bz2, lzma) to find it.
     formatter = functools.partial(argparse.HelpFormatter, width=_width(sys.stdout) - 2)
     parser = argparse.ArgumentParser(
-        formatter_class=formatter,
+        # the top level keeps its epilog's line breaks (the table of environment variables)
+        formatter_class=functools.partial(
+            argparse.RawDescriptionHelpFormatter, width=_width(sys.stdout) - 2
+        ),
         prog="slamcourse",
         description="Learn classical SLAM by computing it: exercises with "
         "instant feedback, graded against numpy reference code.",
+        epilog=_environment_help(),
     )
     parser.add_argument("--version", action="version", version=f"slamcourse {__version__}")
     parser.add_argument(
@@ -578,7 +603,13 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
 
     p = add("next", cmd_next, "pose the next open exercise and grade answers interactively")
     p.add_argument("--no-context", action="store_true", help="do not show the chapter prose")
-    p = add("check", cmd_check, "grade one answer (exit 0 passed, 1 not passed, 2 usage)")
+    p = add(
+        "check",
+        cmd_check,
+        "grade one answer or code file. Exit codes: 0 passed, 1 not passed (wrong, unreadable "
+        "or timed out), 2 usage error, 3 grader error, 4 broken course, 5 progress database "
+        "unusable",
+    )
     p.add_argument("exercise", metavar="ID")
     p.add_argument("--answer", metavar="TEXT", help="the answer, e.g. 0.25, 7/5, [0.3, -0.09]")
     p.add_argument(

@@ -71,7 +71,7 @@ def validate_exercise(
         try:
             variant = variants.variant(spec, seed)
             _render_all(spec, variant.params, kind.expected(spec, variant))
-            found = kind.self_test(spec, variant)
+            found = kind.self_test(spec, variant) + kind.example_problems(spec, variant)
         except CourseError as exc:
             found = exc.problems
         except GraderError as exc:  # e.g. the reference fails on an input the strategy drew

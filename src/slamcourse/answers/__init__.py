@@ -12,9 +12,11 @@ from slamcourse.answers.compare import (
     EntryComparison,
     angle_is_close,
     compare_entries,
+    format_about,
     format_number,
     format_window,
     is_close,
+    plural,
     tolerance_window,
     wrap_angle,
 )
@@ -34,6 +36,7 @@ __all__ = [
     "compare_entries",
     "compile_expression",
     "evaluate_number",
+    "format_about",
     "format_number",
     "format_window",
     "is_close",
@@ -42,6 +45,7 @@ __all__ = [
     "parse_matrix",
     "parse_number",
     "parse_vector",
+    "plural",
     "tolerance_window",
     "wrap_angle",
 ]

@@ -193,6 +193,27 @@ def format_number(x: float) -> str:
     return _format(x, 4)
 
 
+def format_about(x: float) -> str:
+    """A number after "about": 3 significant digits, integers as integers (``32.9``, ``12400``,
+    ``0.0919``)."""
+    if not math.isfinite(x) or x == 0:
+        return _format(x, 4)
+    digits = 3 - 1 - math.floor(math.log10(abs(x)))
+    rounded = round(x, digits)
+    if rounded == int(rounded) and abs(rounded) < 1e15:
+        return str(int(rounded))
+    return _format(rounded, max(digits, 0) if digits > 0 else 4)
+
+
+def plural(count: float, word: str, many: str | None = None) -> str:
+    """``1 entry``, ``2 entries``, ``12403 entries``: the count (as an integer when it is one)
+    and the word in the right number."""
+    if many is None:
+        consonant_y = word.endswith("y") and word[-2:-1] not in tuple("aeiou")
+        many = word[:-1] + "ies" if consonant_y else word + "s"
+    return f"{format_number(count)} {word if count == 1 else many}"
+
+
 def format_window(lo: float, hi: float) -> str:
     """``[lo, hi]`` as :func:`format_number` writes them, more digits if they would look equal."""
     for digits in range(4, 18):

@@ -8,7 +8,7 @@ from collections.abc import Callable
 from functools import lru_cache
 from typing import Any
 
-from slamcourse.answers.compare import format_number
+from slamcourse.answers.compare import format_about, format_number, plural
 from slamcourse.course.model import ExerciseSpec, Text
 from slamcourse.errors import CourseError, Problem
 
@@ -21,6 +21,24 @@ def num(value: Any, decimals: int | None = None) -> str:
     if decimals is not None:
         return f"{float(value):.{decimals}f}"
     return format_number(float(value))
+
+
+def about(value: Any) -> str:
+    """A number after "about": 3 significant digits (``about {{ ratio | about }}``)."""
+    return format_about(float(_plain(value)))
+
+
+def signed(value: Any, decimals: int | None = None) -> str:
+    """A number as a term after another: ``- 0.58`` or ``+ 0.58`` (so ``a {{ b | signed }}``
+    never shows ``a - -0.58``)."""
+    value = float(_plain(value))
+    sign = "-" if value < 0 else "+"
+    return f"{sign} {num(abs(value), decimals)}"
+
+
+def count(value: Any, word: str, many: str | None = None) -> str:
+    """``{{ n | count("byte") }}``: ``1 byte``, ``4 bytes``."""
+    return plural(float(_plain(value)), word, many)
 
 
 def angle(value: Any) -> str:
@@ -58,7 +76,9 @@ def _environment() -> Any:
     env = jinja2.Environment(
         undefined=jinja2.StrictUndefined, autoescape=False, keep_trailing_newline=False
     )
-    env.filters.update(num=num, angle=angle, vec=vec, mat=mat)
+    env.filters.update(
+        num=num, angle=angle, vec=vec, mat=mat, about=about, signed=signed, count=count
+    )
     return env
 
 
@@ -68,9 +88,16 @@ def _compile(source: str) -> Any:
 
 
 _SUBSTITUTION = re.compile(
-    r"\{\{\s*([A-Za-z_][A-Za-z0-9_]*)\s*(?:\|\s*(num|angle|vec|mat)\s*(?:\(\s*(\d+)\s*\))?\s*)?\}\}"
+    r"\{\{\s*([A-Za-z_][A-Za-z0-9_]*)\s*(?:\|\s*(num|angle|vec|mat|about|signed)\s*(?:\(\s*(\d+)\s*\))?\s*)?\}\}"
 )
-_FILTERS: dict[str, Callable[..., str]] = {"num": num, "angle": angle, "vec": vec, "mat": mat}
+_FILTERS: dict[str, Callable[..., str]] = {
+    "num": num,
+    "angle": angle,
+    "vec": vec,
+    "mat": mat,
+    "about": about,
+    "signed": signed,
+}
 
 
 def substitute(source: str, context: dict[str, Any]) -> str | None:
@@ -90,7 +117,7 @@ def substitute(source: str, context: dict[str, Any]) -> str | None:
             text = str(value)
         elif arg is None:
             text = _FILTERS[filt](value)
-        elif filt == "angle":  # angle takes no argument: let Jinja2 report it
+        elif filt in ("angle", "about"):  # no argument: let Jinja2 report it
             return None
         else:
             text = _FILTERS[filt](value, int(arg))

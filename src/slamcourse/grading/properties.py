@@ -228,9 +228,17 @@ def matching_misconception(
     returns: Any,
     tolerance: Tolerance,
     candidates: Sequence[tuple[str, Callable[..., Any]]],
+    *,
+    passed: Sequence[tuple[dict[str, Any], Any]] = (),
 ) -> str | None:
-    """The id of the first misconception whose outputs equal the learner's on every recorded
-    failing input (only inputs where the learner returned a value count)."""
+    """The id of the first misconception that explains the learner's function.
+
+    It must return what the learner returned on every recorded failing input (only inputs where
+    the learner returned a value count), and it must also be right wherever the learner was
+    right: ``passed`` holds ``(input, reference value)`` pairs of edge examples the learner
+    passed. A solution that special-cases one input is then not blamed on a misconception that
+    goes wrong on inputs the solution gets right.
+    """
     observed = [f for f in outcome.failures if f.kind == "mismatch"]
     if not observed:
         return None
@@ -239,6 +247,9 @@ def matching_misconception(
             if all(
                 compare(returns, f.got, fn(**copy.deepcopy(f.kwargs)), tolerance) is None
                 for f in observed
+            ) and all(
+                compare(returns, to_plain(fn(**copy.deepcopy(kwargs))), want, tolerance) is None
+                for kwargs, want in passed
             ):
                 return mid
         except Exception:  # a misconception undefined on this input does not match

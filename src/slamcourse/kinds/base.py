@@ -60,6 +60,20 @@ class Kind(ABC):
         """One line telling the learner what form of answer is expected and what is accepted."""
         return ""
 
+    def example_candidates(self, spec: ExerciseSpec, variant: Variant) -> list[str]:
+        """Answers that show the input form (``how_to_answer`` shows the first safe one)."""
+        return []
+
+    def example(self, spec: ExerciseSpec, variant: Variant) -> str | None:
+        """An example of the input form that is *not* a right answer of this variant, nor a
+        declared misconception: a readable answer that fails with no misconception named.
+        None when every candidate is unsafe (the validator reports that)."""
+        for text in self.example_candidates(spec, variant):
+            verdict = self.check(spec, variant, text)
+            if verdict.status == "failed" and verdict.misconception is None:
+                return text
+        return None
+
     def form(self, spec: ExerciseSpec, variant: Variant) -> dict[str, Any]:
         """The expected input form as data: ``{"type": <kind>, ...}`` with the shape, units,
         options, items or listing a face needs to render an input (see docs/architecture.md)."""
@@ -68,6 +82,21 @@ class Kind(ABC):
     # ---- validation
     def self_test(self, spec: ExerciseSpec, variant: Variant) -> list[Problem]:
         """Prove the variant sound: the reference passes; misconceptions fail and are named."""
+        return []
+
+    def example_problems(self, spec: ExerciseSpec, variant: Variant) -> list[Problem]:
+        """The validator's check that the prompt never gives the answer away by its example."""
+        if self.example_candidates(spec, variant) and self.example(spec, variant) is None:
+            return [
+                problem(
+                    spec,
+                    spec.line,
+                    f"variant {variant.seed}: every example of the input form "
+                    f"({', '.join(self.example_candidates(spec, variant))}) is a right answer "
+                    "or a declared misconception, so the prompt would give it away; add a "
+                    "'require' that avoids such variants",
+                )
+            ]
         return []
 
 

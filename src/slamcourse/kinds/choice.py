@@ -123,8 +123,17 @@ class ChoiceKind(Kind):
     def how_to_answer(self, spec: ExerciseSpec, variant: Variant) -> str:
         ids = ", ".join(c.id for c in self.display_order(spec, variant))
         if self.multiple:
-            return f"Answer with every option that applies, e.g. `a c` (options: {ids})."
+            return (
+                f"Answer with every option that applies, e.g. `{self.example(spec, variant)}` "
+                f"(options: {ids})."
+            )
         return f"Answer with one option: {ids}."
+
+    def example_candidates(self, spec: ExerciseSpec, variant: Variant) -> list[str]:
+        if not self.multiple:
+            return []
+        ids = [c.id for c in self.display_order(spec, variant)]
+        return [f"{ids[0]} {ids[-1]}", ids[0], f"{ids[0]} {ids[1]}", ids[-1], " ".join(ids)]
 
     def _read(self, spec: ExerciseSpec, answer: str) -> list[str]:
         opts: ChoiceOptions = spec.options

@@ -161,9 +161,14 @@ class ExpressionKind(Kind):
     def how_to_answer(self, spec: ExerciseSpec, variant: Variant) -> str:
         names = ", ".join(v.name for v in spec.options.variables)
         return (
-            f"Answer with a formula in {names} (e.g. -dx/sqrt(q)); you may use + - * / ^, "
-            "sqrt, sin, cos, atan2, pi."
+            f"Answer with a formula in {names} (e.g. {self.example(spec, variant)}); you may "
+            "use + - * / ^, sqrt, sin, cos, atan2, pi."
         )
+
+    def example_candidates(self, spec: ExerciseSpec, variant: Variant) -> list[str]:
+        v = [var.name for var in spec.options.variables] or ["x"]
+        a, b = v[0], v[-1]
+        return [f"2*{a} + sqrt({b})", f"{a}^2 - 3*{b}", f"sin({a}) / (1 + {b}^2)"]
 
     def self_test(self, spec: ExerciseSpec, variant: Variant) -> list[Problem]:
         opts: ExpressionOptions = spec.options

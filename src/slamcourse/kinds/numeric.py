@@ -15,6 +15,7 @@ from slamcourse.answers import (
     parse_matrix,
     parse_number,
     parse_vector,
+    plural,
     tolerance_window,
 )
 from slamcourse.course.model import ExerciseSpec, Misconception, Tolerance, Variant
@@ -182,13 +183,20 @@ class NumberKind(Kind):
     def how_to_answer(self, spec: ExerciseSpec, variant: Variant) -> str:
         opts: NumericOptions = spec.options
         units = f" in {opts.units}" if opts.units else ""
+        example = self.example(spec, variant)
         if opts.exact:
-            return f"Answer with a whole number{units}."
+            return f"Answer with a whole number{units}, exactly (e.g. {example})."
         angle = " Angles are in radians and compared modulo 2π." if opts.angle else ""
         return (
-            f"Answer with a number{units} (e.g. 0.25, 7/5, pi/4, sqrt(2)/2); accepted "
+            f"Answer with a number{units} (a decimal, a fraction, or a formula of numbers "
+            f"with pi and sqrt, e.g. {example}); accepted "
             f"{describe_tolerance(spec.tolerance, False)}.{angle}"
         )
+
+    def example_candidates(self, spec: ExerciseSpec, variant: Variant) -> list[str]:
+        if spec.options.exact:
+            return ["12", "7", "30", "101"]
+        return ["7/5", "sqrt(2)/2", "0.25", "pi/4", "3.6"]
 
     def answer_text(self, value: float, exact: bool) -> str:
         return str(round(value)) if exact else repr(float(value))
@@ -279,10 +287,10 @@ class VectorKind(Kind):
             return Verdict.unreadable(str(exc))
         want = self.expected(spec, variant)
         result = self._compare(spec, got, want)
-        if not result.shape_ok:
-            return Verdict.wrong(
-                f"Expected {self._shape_words(result.expected_shape)}, but your "
-                f"answer has {self._shape_words(result.got_shape)}."
+        if not result.shape_ok:  # a form error: the answer cannot be compared, no attempt
+            return Verdict.unreadable(
+                f"expected {self._shape_words(result.expected_shape)}, but your "
+                f"answer has {self._shape_words(result.got_shape)}"
             )
         if result.ok:
             return Verdict.ok(
@@ -327,18 +335,38 @@ class VectorKind(Kind):
 
     def _shape_words(self, shape: tuple[int, ...]) -> str:
         if len(shape) == 1:
-            return f"{shape[0]} entries"
+            return plural(shape[0], "entry")
         if len(shape) == 2:
-            return f"{shape[0]} rows of {shape[1]}"
+            return f"{plural(shape[0], 'row')} of {shape[1]}"
         return f"shape {shape}"
 
     def how_to_answer(self, spec: ExerciseSpec, variant: Variant) -> str:
         units = f" (in {spec.options.units})" if spec.options.units else ""
         tol = describe_tolerance(spec.tolerance, spec.options.exact)
+        n = len(self.expected(spec, variant))
+        example = self.example(spec, variant)
         return (
-            f"Answer with a vector{units} such as [0.3, -0.09] or 0.3 -0.09; each entry "
-            f"accepted {tol}."
+            f"Answer with a vector of {plural(n, 'entry')}{units}, e.g. {example} (brackets "
+            f"and commas optional); each entry accepted {tol}."
         )
+
+    def example_candidates(self, spec: ExerciseSpec, variant: Variant) -> list[str]:
+        n = len(self.expected(spec, variant))
+        exact = spec.options.exact
+        pools = (
+            ([2, -1, 4, 3, -5, 6], [1, 3, -2, 5, 4, -3])
+            if exact
+            else (
+                [0.3, -1.2, 2.5, 0.75, -4.1, 1.6],
+                [1.5, 0.4, -0.8, 3.2, -2.25, 0.9],
+            )
+        )
+        return [
+            "["
+            + ", ".join(format_number(pool[i % len(pool)] * (1 + i // len(pool))) for i in range(n))
+            + "]"
+            for pool in pools
+        ]
 
     def answer_text(self, value: list[Any]) -> str:
         return repr(value)
@@ -377,10 +405,16 @@ class MatrixKind(VectorKind):
 
     def how_to_answer(self, spec: ExerciseSpec, variant: Variant) -> str:
         tol = describe_tolerance(spec.tolerance, spec.options.exact)
+        want = self.expected(spec, variant)
+        rows, cols = len(want), len(want[0])
+        # the example is written in letters, so it can never be an answer
         return (
-            f"Answer with a matrix such as [[1, 2], [3, 4]] or [1 2; 3 4]; each entry "
-            f"accepted {tol}."
+            f"Answer with a {rows}×{cols} matrix, row by row: [[a, b], [c, d]] or "
+            f"[a b; c d] for a 2×2 one; each entry accepted {tol}."
         )
+
+    def example_candidates(self, spec: ExerciseSpec, variant: Variant) -> list[str]:
+        return []
 
 
 def _size(value: list[Any]) -> int:

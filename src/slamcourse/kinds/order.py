@@ -104,7 +104,14 @@ class OrderKind(Kind):
         return {"type": "order", "items": items}
 
     def how_to_answer(self, spec: ExerciseSpec, variant: Variant) -> str:
-        return "Answer with the ids in order, first to last, e.g. `c a d b`."
+        return (
+            "Answer with the ids in order, first to last, separated by spaces, e.g. "
+            f"`{self.example(spec, variant)}`."
+        )
+
+    def example_candidates(self, spec: ExerciseSpec, variant: Variant) -> list[str]:
+        ids = [it.id for it in self.display_order(spec, variant)]
+        return [" ".join(ids), " ".join(reversed(ids)), " ".join(ids[1:] + ids[:1])]
 
     def check(self, spec: ExerciseSpec, variant: Variant, answer: str) -> Verdict:
         right = self.expected(spec, variant)
@@ -129,7 +136,8 @@ class OrderKind(Kind):
         out = [g for g in given if g not in in_run]
         by_id = {it.id: it for it in spec.options.items}
         parts = [f"Not quite: {len(run)} of {len(right)} steps are in the right relative order."]
-        parts.append("Out of place: " + ", ".join(f"{g}) {by_id[g].text}" for g in out) + ".")
+        listed = "; ".join(f"{g}) {by_id[g].text.rstrip('.')}" for g in out)
+        parts.append(f"Out of place: {listed}.")
         parts += [spec.options.feedback[g] for g in out if g in spec.options.feedback]
         return Verdict.wrong(" ".join(parts), score=len(run) / len(right), out_of_place=out)
 
