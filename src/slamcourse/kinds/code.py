@@ -13,6 +13,7 @@ from pathlib import Path
 from typing import Any, ClassVar
 
 from slamcourse.course import reference
+from slamcourse.course.loader import read_course_file
 from slamcourse.course.model import ExerciseSpec, Tolerance, Variant
 from slamcourse.course.schema import Checker
 from slamcourse.course.yamlio import LineDict, LineList
@@ -175,9 +176,16 @@ class CodeKind(Kind):
         worker: Any = None,
     ) -> Verdict:
         """Grade learner ``source`` in a sandboxed worker (spawned here unless given)."""
+        from slamcourse.answers.text import unreadable_at
         from slamcourse.errors import GraderError
         from slamcourse.sandbox import Worker
 
+        bad = unreadable_at(source)
+        if bad is not None:  # the answers' decoding policy, said per line for a file
+            line = source.count("\n", 0, bad[0]) + 1
+            return Verdict.unreadable(
+                f"{filename}:{line}: a character is not text ({bad[1]}); save the file as UTF-8"
+            )
         if len(source.encode("utf-8", "replace")) > MAX_SOURCE_BYTES:
             return Verdict.unreadable(f"{filename} is larger than {MAX_SOURCE_BYTES // 1024} KiB")
         try:
@@ -322,7 +330,7 @@ class CodeKind(Kind):
             ("solution", opts.solution, True),
             ("starter", opts.starter, False),
         ):
-            verdict = self.check_source(spec, path.read_text(encoding="utf-8"), path.name)
+            verdict = self.check_source(spec, read_course_file(path, spec.course_root), path.name)
             if verdict.passed != want_pass:
                 problems.append(
                     problem(

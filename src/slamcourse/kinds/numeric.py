@@ -160,8 +160,10 @@ class NumberKind(Kind):
             return "The size is right but the sign is wrong."
         if opts.angle and self.accepts(spec, math.radians(got), want):
             return "That looks like degrees; give the angle in radians (e.g. pi/4 or 0.785)."
-        if want != 0 and got != 0 and not opts.exact:
-            ratio = math.log10(abs(got / want))
+        if want != 0 and got != 0 and math.isfinite(got) and not opts.exact:
+            # a difference of logarithms, not log10(got / want): the quotient overflows to
+            # inf (1e308 / 0.1) or underflows to 0 (5e-324 / 10), and log10 of either raises
+            ratio = math.log10(abs(got)) - math.log10(abs(want))
             k = round(ratio)
             if k != 0 and abs(ratio - k) < 0.01:
                 return (
