@@ -475,7 +475,7 @@ def _canonical_outside(dist: str, args: tuple[Any, ...], canonical: Any) -> str 
 
     A formula (text, e.g. ``"pi/4"``) is checked when variant 0 is drawn
     (:func:`slamcourse.course.variants.variant`), since it may use other parameters."""
-    if canonical is None or isinstance(canonical, str) and dist != "choice":
+    if canonical is None or (isinstance(canonical, str) and dist != "choice"):
         return None
     if dist == "choice":
         if canonical in args:

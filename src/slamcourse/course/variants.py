@@ -67,7 +67,8 @@ def _value(
                         _rel(spec),
                         p.line,
                         f"parameter '{p.name}': canonical '{p.canonical}' is "
-                        f"{value:g}, outside its own range [{p.args[0]}, {p.args[1]}]",
+                        f"{value:g}, outside its own range [{p.args[0]}, {p.args[1]}]; widen the "
+                        "range or fix the value",
                     )
                 )
         return value

@@ -377,7 +377,8 @@ def _load_verdict(loaded: Any, filename: str, opts: CodeOptions) -> Verdict:
     sig = f"def {opts.function}({', '.join(opts.signature)})"
     status = loaded.status
     if status == "syntax_error":
-        return Verdict.unreadable(f"{filename}:{loaded.line}: syntax error: {loaded.message}")
+        where = f"{filename}:{loaded.line}" if loaded.line else filename
+        return Verdict.unreadable(f"{where}: syntax error: {loaded.message}")
     if status == "missing_function":
         found = f" (it defines {', '.join(loaded.found)})" if loaded.found else ""
         return Verdict.unreadable(
