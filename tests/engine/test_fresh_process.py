@@ -100,3 +100,51 @@ def test_every_code_solution_passes_alone(tmp_path: Path) -> None:
         results = list(pool.map(check, exercises))
     failures = [f"{ex_id} (exit {rc}):\n{out}" for ex_id, rc, out in results if rc != 0]
     assert not failures, "\n\n".join(failures)
+
+
+_CHAPTER_ALONE = """
+import json, sys
+from slamcourse.course.loader import load_course
+from slamcourse.course.locate import bundled_course_root
+from slamcourse.course.variants import variant
+from slamcourse.errors import CourseError
+from slamcourse.kinds import get_kind
+
+course = load_course(bundled_course_root())
+problems, checked = [], 0
+for ex_id in course.chapter(sys.argv[1]).exercises:
+    spec = course.exercise(ex_id)
+    if spec.kind == "code":  # graded by test_every_code_solution_passes_alone
+        continue
+    checked += 1
+    try:
+        problems += [str(p) for p in get_kind(spec.kind).self_test(spec, variant(spec, 0))]
+    except CourseError as exc:
+        problems += [str(p) for p in exc.problems]
+print(json.dumps({"checked": checked, "problems": problems}))
+"""
+
+
+@pytest.mark.slow
+def test_every_chapter_alone_accepts_its_reference_answers(tmp_path: Path) -> None:
+    """Each chapter in its own interpreter: the canonical variant of every answer exercise
+    computes, its reference answer passes and its misconceptions are recognised, with only
+    that chapter's reference.py imported."""
+    chapters = [ch.id for ch in load_course(COURSE_ROOT).chapters]
+    assert len(chapters) >= 8
+
+    def check(chapter: str) -> tuple[str, int, str]:
+        home = tmp_path / chapter
+        home.mkdir()
+        done = _run(["-c", _CHAPTER_ALONE, chapter], home)
+        return chapter, done.returncode, done.stdout + done.stderr
+
+    with ThreadPoolExecutor(max_workers=2) as pool:
+        results = list(pool.map(check, chapters))
+    checked = 0
+    for chapter, rc, out in results:
+        assert rc == 0, f"{chapter}:\n{out}"
+        report = json.loads(out)
+        assert report["problems"] == [], chapter
+        checked += report["checked"]
+    assert checked >= 30

@@ -23,8 +23,10 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from slamcourse.answers import decode_answer
-from slamcourse.course.loader import load_course
+from slamcourse.course import variants
+from slamcourse.course.loader import Course, load_course
 from slamcourse.course.locate import bundled_course_root
+from slamcourse.course.model import ExerciseSpec, Variant
 from slamcourse.engine import Engine
 from slamcourse.errors import AnswerFormatError, CourseError
 from slamcourse.kinds import get_kind
@@ -53,7 +55,7 @@ def _answerable() -> list[tuple[str, str]]:
     return [(c, ex) for c, ex in found if _course(c).exercise(ex).kind != "code"]
 
 
-def _course(name: str):  # type: ignore[no-untyped-def]
+def _course(name: str) -> Course:
     return FIXTURE if name == "fixture" else REAL
 
 
@@ -137,10 +139,8 @@ def test_code_source_with_a_lone_surrogate_is_unreadable_at_its_line() -> None:
     assert verdict.feedback.startswith("range_bearing.py:4: a character is not text")
 
 
-def get_variant(spec):  # type: ignore[no-untyped-def]
-    from slamcourse.course.variants import variant
-
-    return variant(spec, 0)
+def get_variant(spec: ExerciseSpec) -> Variant:
+    return variants.variant(spec, 0)
 
 
 # ------------------------------------------------------------------ 3. extreme numbers
