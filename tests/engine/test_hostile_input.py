@@ -25,10 +25,10 @@ from hypothesis import strategies as st
 from slamcourse.answers import decode_answer
 from slamcourse.course import variants
 from slamcourse.course.loader import Course, load_course
-from slamcourse.course.locate import bundled_course_root
+from slamcourse.course.locate import bundled_course_root, course_root
 from slamcourse.course.model import ExerciseSpec, Variant
 from slamcourse.engine import Engine
-from slamcourse.errors import AnswerFormatError, CourseError
+from slamcourse.errors import AnswerFormatError, CourseError, UsageError
 from slamcourse.kinds import get_kind
 from slamcourse.progress import Progress
 from slamcourse.validate import validate_exercise
@@ -327,6 +327,12 @@ def test_cli_validate_of_random_bytes_prints_path_line(course_copy: Path, tmp_pa
     assert done.returncode == 1
     assert "exercises/basics/distance.yaml:1: byte " in done.stdout
     assert "exercises/basics/count.yaml:" in done.stdout
+
+
+def test_course_folder_that_is_a_symlink_loop_is_a_usage_error(tmp_path: Path) -> None:
+    os.symlink("loop", tmp_path / "loop")
+    with pytest.raises(UsageError, match="loop: cannot be resolved"):
+        course_root(tmp_path / "loop")
 
 
 def test_chapter_context_of_a_broken_chapter_is_a_course_error(course_copy: Path) -> None:
