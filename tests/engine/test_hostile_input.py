@@ -312,6 +312,22 @@ def test_hostile_course_file_is_a_located_problem(
     assert any(p.startswith(located) and words in p for p in problems), problems
 
 
+@pytest.mark.parametrize(
+    ("exercise", "function", "body"),
+    [("count", "def count(n):", "10**400"), ("offset", "def offset(a, b):", "[10**400, 1]")],
+)
+def test_reference_answer_too_large_for_a_float_is_a_located_problem(
+    course_copy: Path, exercise: str, function: str, body: str
+) -> None:
+    path = course_copy / "exercises/basics/reference.py"
+    path.write_text(path.read_text().replace(function, f"{function}\n    return {body}\n", 1))
+    course = load_course(course_copy)
+    problems = [str(p) for p in validate_exercise(course, f"basics/{exercise}", 0)]
+    assert any(
+        p.startswith(f"exercises/basics/{exercise}.yaml:") and "must be a" in p for p in problems
+    ), problems
+
+
 def test_cli_validate_of_random_bytes_prints_path_line(course_copy: Path, tmp_path: Path) -> None:
     _random_yaml(course_copy)
     _control_character(course_copy)

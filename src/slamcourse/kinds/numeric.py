@@ -82,7 +82,7 @@ def _parse_options(raw: LineDict, check: Checker, *, vector: bool) -> NumericOpt
 def _to_float(spec: ExerciseSpec, value: Any, what: str, exact: bool) -> float:
     try:
         number = float(value)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):
         raise course_error(
             spec, spec.reference_line, f"{what} must be a number, got {value!r}"
         ) from None
@@ -231,7 +231,7 @@ class VectorKind(Kind):
 
         try:
             arr = np.asarray(value, dtype=float)
-        except (TypeError, ValueError):
+        except (TypeError, ValueError, OverflowError):
             raise course_error(
                 spec, spec.reference_line, f"{what} must be a {self.name} of numbers, got {value!r}"
             ) from None
