@@ -305,6 +305,19 @@ def _translate(path: Path, exc: sqlite3.Error) -> ProgressError:
     return ProgressError(f"the progress database {path} failed: {detail}")
 
 
+def _storable(text: str | None) -> str | None:
+    """``text`` as valid UTF-8 for SQLite: lone surrogates (undecodable bytes from ``argv``,
+    ``"\\ud800"`` from JSON) become their ``\\udc80``-style escapes instead of failing the
+    write. The engine refuses such answers as unreadable; the log still records what came in."""
+    if text is None:
+        return None
+    try:
+        text.encode("utf-8")
+    except UnicodeEncodeError:
+        return text.encode("utf-8", "backslashreplace").decode("utf-8")
+    return text
+
+
 def _now() -> str:
     return datetime.now(UTC).isoformat(timespec="seconds")
 
@@ -548,11 +561,11 @@ class Progress:
                     now,
                     exercise_id,
                     int(variant),
-                    answer,
+                    _storable(answer),
                     verdict.status,
                     float(verdict.score),
-                    verdict.misconception,
-                    verdict.feedback,
+                    _storable(verdict.misconception),
+                    _storable(verdict.feedback),
                     counted,
                 ),
             )

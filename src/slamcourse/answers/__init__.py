@@ -2,6 +2,8 @@
 
 - :mod:`~slamcourse.answers.expr`: the safe formula evaluator (also used for course parameters).
 - :mod:`~slamcourse.answers.parse`: numbers, vectors, matrices and choice ids from text.
+- :mod:`~slamcourse.answers.text`: the decoding policy (invalid bytes and lone surrogates make an
+  answer unreadable) that every parser applies first.
 - :mod:`~slamcourse.answers.compare`: tolerance windows, angle wrapping, entry comparison and
   number formatting.
 
@@ -28,6 +30,7 @@ from slamcourse.answers.parse import (
     parse_number,
     parse_vector,
 )
+from slamcourse.answers.text import decode_answer
 
 __all__ = [
     "EntryComparison",
@@ -35,6 +38,7 @@ __all__ = [
     "angle_is_close",
     "compare_entries",
     "compile_expression",
+    "decode_answer",
     "evaluate_number",
     "format_about",
     "format_number",

@@ -41,6 +41,7 @@ from collections.abc import Callable, Collection, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any, cast
 
+from slamcourse.answers.text import decode_answer
 from slamcourse.errors import AnswerFormatError, GraderError
 
 __all__ = [
@@ -898,9 +899,10 @@ def compile_expression(
     Forms: ``-dx/sqrt(q)``, ``2pi/3``, ``atan2(dy, dx) - th``, ``√2/2``; with ``logic=True`` also
     conditions such as ``hypot(xj - xr, yj - yr) > 1 and not p == 0.5``. Raises
     :class:`AnswerFormatError` naming what is wrong and what is allowed, e.g.
-    ``unknown name 'x'; you can use dx, dy, q, pi, e, tau``.
+    ``unknown name 'x'; you can use dx, dy, q, pi, e, tau``. Text that is not valid Unicode
+    (lone surrogates) is refused first (:func:`~slamcourse.answers.text.decode_answer`).
     """
-    return _compile(text, frozenset(variables), logic)
+    return _compile(decode_answer(text), frozenset(variables), logic)
 
 
 def evaluate_number(text: str) -> float:

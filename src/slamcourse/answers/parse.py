@@ -21,6 +21,7 @@ import re
 
 from slamcourse.answers.compare import format_number
 from slamcourse.answers.expr import CONSTANTS, FUNCTIONS, MAX_CHARS, evaluate_number
+from slamcourse.answers.text import decode_answer
 from slamcourse.errors import AnswerFormatError
 
 __all__ = ["parse_ids", "parse_integer", "parse_matrix", "parse_number", "parse_vector"]
@@ -264,12 +265,12 @@ def parse_number(text: str) -> float:
     numbers (``0.3 -0.09``), degrees (``45°``), units (``5 m``), a decimal comma (``0,5``) and
     ``nan``/``inf``.
     """
-    return _scalar(text, "", NUMBER_FORM)
+    return _scalar(decode_answer(text), "", NUMBER_FORM)
 
 
 def parse_integer(text: str) -> int:
     """Read a whole number: ``9``, ``9.0``, ``1e3``, ``18/2`` (within 1e-9 of an integer)."""
-    value = _scalar(text, "", INTEGER_FORM)
+    value = _scalar(decode_answer(text), "", INTEGER_FORM)
     nearest = round(value)
     if abs(value - nearest) > 1e-9:
         raise AnswerFormatError(f"expected a whole number such as 9, got {format_number(value)}")
@@ -282,7 +283,7 @@ def parse_integer(text: str) -> int:
 
 
 def _start(text: str, form: str) -> str:
-    s = _clean(text)
+    s = _clean(decode_answer(text))
     if not s:
         raise AnswerFormatError(f"empty answer — expected {form}")
     _check_length(s)
@@ -409,6 +410,7 @@ def parse_ids(text: str) -> list[str]:
     Forms: ``a``, ``a c``, ``a,c``, ``A, C``, ``[c, a, b]``, ``c a b``. Duplicates are kept (the
     caller decides what they mean).
     """
+    text = decode_answer(text)
     _check_length(text)
     ids: list[str] = []
     for token in re.split(r"[\s,;]+", text):

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import re
 from pathlib import Path
+from typing import Any
 
 from slamcourse.course.model import (
     FORMAT_VERSION,
@@ -63,6 +64,33 @@ def _directive(line: str) -> tuple[str, str] | None:
         return None
     ex_id = directive_id(match.group("info"))
     return None if ex_id is None or " " in ex_id else (match.group("fence"), ex_id)
+
+
+def read_course_file(path: Path, root: Path) -> str:
+    """The text of a course file, decoded once, here, with one policy: the file must be
+    UTF-8. A byte that is not, or a file that cannot be read (missing, a directory, a symlink
+    loop, no permission), is a :class:`CourseError` naming ``path:line``, never a traceback."""
+    rel = relpath(path, root)
+    try:
+        data = path.read_bytes()
+    except OSError as exc:
+        reason = exc.strerror or type(exc).__name__
+        raise CourseError(
+            Problem(rel, None, f"cannot read this file ({reason}); fix or remove it")
+        ) from None
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        line = data.count(b"\n", 0, exc.start) + 1
+        column = exc.start - data.rfind(b"\n", 0, exc.start)
+        raise CourseError(
+            Problem(
+                rel,
+                line,
+                f"byte 0x{data[exc.start]:02x} (column {column}) is not UTF-8; "
+                "save the file as UTF-8",
+            )
+        ) from None
 
 
 class Course:
@@ -193,7 +221,7 @@ def _index_course(root: Path) -> tuple[list[Chapter], list[Problem]]:
 
 def _index_chapter(path: Path, root: Path, number: int, problems: list[Problem]) -> Chapter:
     rel = relpath(path, root)
-    text = path.read_text(encoding="utf-8")
+    text = read_course_file(path, root)
     check = Checker(rel)
     match = _FRONT.match(text)
     fallback = re.sub(r"^\d+-", "", path.stem)
@@ -261,7 +289,7 @@ def chapter_segments(chapter: Chapter) -> list[tuple[str | None, str]]:
 
     The prose before an exercise's directive is its context; the last segment has id ``None``.
     """
-    text = chapter.path.read_text(encoding="utf-8")
+    text = read_course_file(chapter.path, chapter.path.parent.parent)
     match = _FRONT.match(text)
     body = text[match.end() :] if match else text
     segments: list[tuple[str | None, str]] = []
@@ -291,7 +319,7 @@ def load_exercise(path: Path, root: Path) -> ExerciseSpec:
     from slamcourse.kinds import get_kind, kind_names
 
     rel = relpath(path, root)
-    raw = load_yaml(path.read_text(encoding="utf-8"), rel)
+    raw = load_yaml(read_course_file(path, root), rel)
     check = Checker(rel)
     if not isinstance(raw, LineDict):
         raise CourseError(
@@ -440,6 +468,10 @@ def _parameters(raw: LineDict, check: Checker) -> tuple[ParamSpec, ...]:
                 "used by variant 0)",
             )
             continue
+        outside = _canonical_outside(dist, args, item.get("canonical"))
+        if outside:
+            check.add(item.line_of("canonical"), f"parameter '{name}': {outside}")
+            continue
         if "canonical" in item and dist in ("value", "expr"):
             check.add(
                 item.line_of("canonical"),
@@ -448,6 +480,31 @@ def _parameters(raw: LineDict, check: Checker) -> tuple[ParamSpec, ...]:
         rounding = check.typed(item, "round", int)
         specs.append(ParamSpec(name, line, dist, args, item.get("canonical"), rounding))
     return tuple(specs)
+
+
+def _canonical_outside(dist: str, args: tuple[Any, ...], canonical: Any) -> str | None:
+    """Why a literal ``canonical`` value cannot be drawn from its own distribution, or None.
+
+    A formula (text, e.g. ``"pi/4"``) is checked when variant 0 is drawn
+    (:func:`slamcourse.course.variants.variant`), since it may use other parameters."""
+    if canonical is None or (isinstance(canonical, str) and dist != "choice"):
+        return None
+    if dist == "choice":
+        if canonical in args:
+            return None
+        return f"canonical {canonical!r} is not one of its choices {list(args)}"
+    if dist not in ("int", "uniform"):
+        return None
+    whole = dist == "int"
+    number = int if whole else (int, float)
+    if not isinstance(canonical, number) or isinstance(canonical, bool):
+        return f"canonical {canonical!r} must be {'a whole number' if whole else 'a number'}"
+    if not args[0] <= canonical <= args[1]:
+        return (
+            f"canonical {canonical} is outside its own range [{args[0]}, {args[1]}]; "
+            "widen the range or fix the value"
+        )
+    return None
 
 
 def _misconceptions(raw: LineDict, check: Checker) -> tuple[Misconception, ...]:

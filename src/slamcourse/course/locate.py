@@ -30,8 +30,11 @@ def course_root(explicit: str | Path | None = None) -> Path:
     chosen = explicit or os.environ.get(ENV_COURSE)
     if not chosen:
         return bundled_course_root()
-    root = Path(chosen).expanduser().resolve()
     source = "--course" if explicit else f"${ENV_COURSE}"
+    try:
+        root = Path(chosen).expanduser().resolve()
+    except (OSError, RuntimeError) as exc:  # a symlink loop (RuntimeError before Python 3.13)
+        raise UsageError(f"{source} {chosen}: cannot be resolved ({exc})") from None
     if not root.is_dir():
         raise UsageError(f"{source} {root}: no such folder")
     if not (root / "chapters").is_dir() or not (root / "exercises").is_dir():

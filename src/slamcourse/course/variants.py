@@ -59,8 +59,18 @@ def _value(
         return _evaluate(spec, p, p.args[0], known)
     if canonical:
         value = p.canonical
-        if isinstance(value, str):
+        if isinstance(value, str) and not (p.dist == "choice" and value in p.args):
             value = _evaluate(spec, p, value, known)
+            if p.dist in ("int", "uniform") and not p.args[0] <= value <= p.args[1]:
+                raise CourseError(
+                    Problem(
+                        _rel(spec),
+                        p.line,
+                        f"parameter '{p.name}': canonical '{p.canonical}' is "
+                        f"{value:g}, outside its own range [{p.args[0]}, {p.args[1]}]; widen the "
+                        "range or fix the value",
+                    )
+                )
         return value
     if p.dist == "int":
         return rng.randint(int(p.args[0]), int(p.args[1]))

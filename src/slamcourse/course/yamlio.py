@@ -137,8 +137,20 @@ def _parse(text: str, path: str) -> Any:
                 "quote strings that contain ': ' or start with a symbol",
             )
         ) from None
+    except yaml.reader.ReaderError as exc:  # a character YAML forbids (e.g. a control code)
+        line = text.count("\n", 0, exc.position) + 1 if isinstance(exc.position, int) else None
+        char = f"U+{exc.character:04X}" if isinstance(exc.character, int) else "a character"
+        raise CourseError(
+            Problem(path, line, f"{char} is not allowed in YAML ({exc.reason}); remove it")
+        ) from None
     except yaml.YAMLError as exc:
         raise CourseError(Problem(path, None, f"YAML error: {exc}")) from None
+    except RecursionError:
+        raise CourseError(
+            Problem(path, None, "YAML nested too deeply to read; flatten the structure")
+        ) from None
+    except ValueError as exc:  # e.g. an integer of more than 4300 digits
+        raise CourseError(Problem(path, None, f"unreadable YAML value: {exc}")) from None
     finally:
         loader.dispose()
     if loader.problems:

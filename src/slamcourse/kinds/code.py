@@ -14,6 +14,7 @@ from pathlib import Path
 from typing import Any, ClassVar
 
 from slamcourse.course import reference
+from slamcourse.course.loader import read_course_file
 from slamcourse.course.model import ExerciseSpec, Tolerance, Variant
 from slamcourse.course.schema import Checker
 from slamcourse.course.yamlio import LineDict, LineList
@@ -186,9 +187,16 @@ class CodeKind(Kind):
     ) -> Verdict:
         """Grade learner ``source`` in a fresh sandboxed worker: ``spawn()`` hands one out (the
         engine's pool); without it one is spawned here."""
+        from slamcourse.answers.text import unreadable_at
         from slamcourse.errors import GraderError
         from slamcourse.sandbox import Worker
 
+        bad = unreadable_at(source)
+        if bad is not None:  # the answers' decoding policy, said per line for a file
+            line = source.count("\n", 0, bad[0]) + 1
+            return Verdict.unreadable(
+                f"{filename}:{line}: a character is not text ({bad[1]}); save the file as UTF-8"
+            )
         if len(source.encode("utf-8", "replace")) > MAX_SOURCE_BYTES:
             return Verdict.unreadable(f"{filename} is larger than {MAX_SOURCE_BYTES // 1024} KiB")
         try:
@@ -348,7 +356,7 @@ class CodeKind(Kind):
             ("solution", opts.solution, True),
             ("starter", opts.starter, False),
         ):
-            verdict = self.check_source(spec, path.read_text(encoding="utf-8"), path.name)
+            verdict = self.check_source(spec, read_course_file(path, spec.course_root), path.name)
             if verdict.passed != want_pass:
                 problems.append(
                     problem(
@@ -395,7 +403,8 @@ def _load_verdict(loaded: Any, filename: str, opts: CodeOptions) -> Verdict:
     sig = f"def {opts.function}({', '.join(opts.signature)})"
     status = loaded.status
     if status == "syntax_error":
-        return Verdict.unreadable(f"{filename}:{loaded.line}: syntax error: {loaded.message}")
+        where = f"{filename}:{loaded.line}" if loaded.line else filename
+        return Verdict.unreadable(f"{where}: syntax error: {loaded.message}")
     if status == "missing_function":
         found = f" (it defines {', '.join(loaded.found)})" if loaded.found else ""
         return Verdict.unreadable(

@@ -83,7 +83,7 @@ def _parse_options(raw: LineDict, check: Checker, *, vector: bool) -> NumericOpt
 def _to_float(spec: ExerciseSpec, value: Any, what: str, exact: bool) -> float:
     try:
         number = float(value)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):
         raise course_error(
             spec, spec.reference_line, f"{what} must be a number, got {value!r}"
         ) from None
@@ -161,8 +161,10 @@ class NumberKind(Kind):
             return "The size is right but the sign is wrong."
         if opts.angle and self.accepts(spec, math.radians(got), want):
             return "That looks like degrees; give the angle in radians (e.g. pi/4 or 0.785)."
-        if want != 0 and got != 0 and not opts.exact:
-            ratio = math.log10(abs(got / want))
+        if want != 0 and got != 0 and math.isfinite(got) and not opts.exact:
+            # a difference of logarithms, not log10(got / want): the quotient overflows to
+            # inf (1e308 / 0.1) or underflows to 0 (5e-324 / 10), and log10 of either raises
+            ratio = math.log10(abs(got)) - math.log10(abs(want))
             k = round(ratio)
             if k != 0 and abs(ratio - k) < 0.01:
                 return (
@@ -246,7 +248,7 @@ class VectorKind(Kind):
 
         try:
             arr = np.asarray(value, dtype=float)
-        except (TypeError, ValueError):
+        except (TypeError, ValueError, OverflowError):
             raise course_error(
                 spec, spec.reference_line, f"{what} must be a {self.name} of numbers, got {value!r}"
             ) from None

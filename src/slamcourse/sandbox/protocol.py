@@ -85,7 +85,13 @@ def encode_request(frame: dict[str, Any]) -> bytes:
 
 
 def encode_arg(value: Any, depth: int = 0) -> Any:
-    """Plain data for one argument; raises :class:`GraderError` for anything else."""
+    """Plain data for one argument; raises :class:`GraderError` for anything else.
+
+    Containers are recognised by type, whatever is imported; numpy is consulted only for a
+    value that no other rule matched, and only if numpy is already loaded (a numpy value
+    cannot exist otherwise), so encoding never imports numpy and never depends on which
+    modules the process happens to have imported.
+    """
     if depth > MAX_DEPTH:
         raise GraderError("argument nested too deeply to send to the sandbox")
     if value is None:
@@ -94,11 +100,6 @@ def encode_arg(value: Any, depth: int = 0) -> Any:
         if isinstance(value, int) and value.bit_length() > 10_000:
             raise GraderError("integer argument too large to send to the sandbox")
         return value if type(value) in (bool, int, float, str) else _plain(value)
-    np = sys.modules.get("numpy")  # a numpy value can only exist once numpy is imported
-    if np is None:
-        raise GraderError(f"cannot send a {type(value).__name__} to the sandbox")
-    if isinstance(value, np.generic) and value.dtype.kind in "biuf":
-        return value.item()
     if isinstance(value, tuple):
         return {"$tuple": [encode_arg(v, depth + 1) for v in value]}
     if isinstance(value, list):
@@ -109,8 +110,12 @@ def encode_arg(value: Any, depth: int = 0) -> Any:
                 [encode_arg(k, depth + 1), encode_arg(v, depth + 1)] for k, v in value.items()
             ]
         }
-    if isinstance(value, np.ndarray) and value.dtype.kind in "biuf":
-        return {"$ndarray": value.tolist(), "$dtype": value.dtype.name}
+    np = sys.modules.get("numpy")
+    if np is not None:
+        if isinstance(value, np.generic) and value.dtype.kind in "biuf":
+            return value.item()
+        if isinstance(value, np.ndarray) and value.dtype.kind in "biuf":
+            return {"$ndarray": value.tolist(), "$dtype": value.dtype.name}
     raise GraderError(f"cannot send a {type(value).__name__} to the sandbox")
 
 
