@@ -63,7 +63,7 @@ def test_fixture_course_validates() -> None:
         ("basics/offset", "3 -3", "passed", None, ""),
         ("basics/offset", "[-3, 3]", "failed", "swapped", "other way round"),
         ("basics/offset", "[3, 3]", "failed", None, "2 (second)"),
-        ("basics/offset", "[3]", "failed", None, "Expected 2 entries"),
+        ("basics/offset", "[3]", "invalid", None, "expected 2 entries"),
         ("basics/identity", "[[1, 0], [0, 1]]", "passed", None, ""),
         ("basics/identity", "[1 0; 0 1]", "passed", None, ""),
         ("basics/identity", "[[1, 1], [0, 1]]", "failed", None, "(1, 2)"),
