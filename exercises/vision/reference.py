@@ -386,7 +386,9 @@ def fundamental_of_translation(tx: float, ty: float, tz: float, f: float, cx: fl
                                cy: float) -> list[list[float]]:
     """``F = K⁻ᵀ E K⁻¹`` with ``E = [t]×`` (no rotation) and both cameras' ``K`` alike."""
     E = _vision.skew([tx, ty, tz])
-    return _vision.fundamental_from_essential(E, _k(f, cx, cy)).tolist()
+    F = _vision.fundamental_from_essential(E, _k(f, cx, cy))
+    F[np.abs(F) < 1e-12 * np.abs(F).max()] = 0.0  # round-off of entries that are exactly 0
+    return F.tolist()
 
 
 def mistake_fundamental_direction(tx: float, ty: float, tz: float, f: float, cx: float,
