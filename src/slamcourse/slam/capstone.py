@@ -19,8 +19,9 @@ def keyframes(minutes: float, rate_hz: float, keyframe_every: int) -> int:
     return frames // keyframe_every
 
 
-def graph_variables(minutes: float, rate_hz: float, keyframe_every: int,
-                    landmarks_per_keyframe: int) -> tuple[int, int]:
+def graph_variables(
+    minutes: float, rate_hz: float, keyframe_every: int, landmarks_per_keyframe: int
+) -> tuple[int, int]:
     """``(poses, landmarks)`` in the factor graph after the run."""
     poses = keyframes(minutes, rate_hz, keyframe_every)
     return poses, poses * landmarks_per_keyframe
@@ -31,8 +32,9 @@ def graph_dof(poses: int, landmarks: int, pose_dof: int = 3, landmark_dof: int =
     return poses * pose_dof + landmarks * landmark_dof
 
 
-def odometry_step_sigma(step: float, distance_error: float,
-                        heading_error_deg_per_m: float) -> tuple[float, float]:
+def odometry_step_sigma(
+    step: float, distance_error: float, heading_error_deg_per_m: float
+) -> tuple[float, float]:
     """``(σ_pos [m], σ_θ [rad])`` of one straight odometry step of ``step`` metres, with a
     distance error that is the fraction ``distance_error`` of the distance and a heading error of
     ``heading_error_deg_per_m`` degrees per metre driven."""
@@ -66,8 +68,13 @@ def grid_bytes(side: float, resolution: float, bytes_per_cell: int = 1) -> int:
     return occupancy.grid_cells(side, resolution, 2) * bytes_per_cell
 
 
-def graph_bytes(poses: int, landmarks: int, blocks_per_variable: int = 3,
-                pose_dof: int = 3, landmark_dof: int = 2) -> int:
+def graph_bytes(
+    poses: int,
+    landmarks: int,
+    blocks_per_variable: int = 3,
+    pose_dof: int = 3,
+    landmark_dof: int = 2,
+) -> int:
     """Memory of the graph's state in doubles: the mean (one number per scalar unknown) and a
     sparse information matrix with ``blocks_per_variable`` stored blocks per variable, taken as
     ``d × d`` for a variable of dimension ``d`` (the sizing rule of thumb of the chapter)."""
@@ -76,8 +83,9 @@ def graph_bytes(poses: int, landmarks: int, blocks_per_variable: int = 3,
     return (mean + blocks) * DOUBLE_BYTES
 
 
-def dense_information_bytes(poses: int, landmarks: int, pose_dof: int = 3,
-                            landmark_dof: int = 2) -> int:
+def dense_information_bytes(
+    poses: int, landmarks: int, pose_dof: int = 3, landmark_dof: int = 2
+) -> int:
     """Memory of the information matrix stored dense: ``n² `` doubles."""
     n = graph_dof(poses, landmarks, pose_dof, landmark_dof)
     return n * n * DOUBLE_BYTES

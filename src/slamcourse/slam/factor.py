@@ -55,22 +55,25 @@ def star(leaves: int) -> list[Edge]:
     return [(0, k) for k in range(1, leaves + 1)]
 
 
-def factor_and_variable_counts(num_poses: int, num_landmarks: int,
-                               sightings: int) -> tuple[int, int]:
+def factor_and_variable_counts(
+    num_poses: int, num_landmarks: int, sightings: int
+) -> tuple[int, int]:
     """``(factors, variables)`` of a pose chain with a prior, odometry between consecutive poses,
     and each landmark observed from ``sightings`` poses."""
     factors = 1 + (num_poses - 1) + num_landmarks * sightings
     return factors, num_poses + num_landmarks
 
 
-def constraint_dof(num_poses: int, num_observations: int, pose_dof: int = 3,
-                   landmark_dof: int = 2) -> int:
+def constraint_dof(
+    num_poses: int, num_observations: int, pose_dof: int = 3, landmark_dof: int = 2
+) -> int:
     """Scalar equations of the factors: a prior and ``num_poses − 1`` odometry factors of
     ``pose_dof`` each, and ``num_observations`` observations of ``landmark_dof`` each."""
     return num_poses * pose_dof + num_observations * landmark_dof
 
 
-def unknown_dof(num_poses: int, num_landmarks: int, pose_dof: int = 3,
-                landmark_dof: int = 2) -> int:
+def unknown_dof(
+    num_poses: int, num_landmarks: int, pose_dof: int = 3, landmark_dof: int = 2
+) -> int:
     """Scalar unknowns: ``pose_dof`` per pose and ``landmark_dof`` per landmark."""
     return num_poses * pose_dof + num_landmarks * landmark_dof

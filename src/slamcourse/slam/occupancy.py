@@ -17,35 +17,35 @@ def log_odds(p: float) -> float:
     return math.log(p / (1 - p))
 
 
-def probability(l: float) -> float:
-    """The probability ``1 / (1 + e^{−l})`` of the log-odds ``l``."""
-    return 1 / (1 + math.exp(-l))
+def probability(l_cell: float) -> float:
+    """The probability ``1 / (1 + e^{−l})`` of the log-odds ``l = l_cell``."""
+    return 1 / (1 + math.exp(-l_cell))
 
 
-def update(l: float, sensor_prob: float) -> float:
-    """``l + ln(p_s / (1 − p_s))``: one reading fused into a cell."""
-    return l + log_odds(sensor_prob)
+def update(l_cell: float, sensor_prob: float) -> float:
+    """``l + ln(p_s / (1 − p_s))``: one reading fused into a cell at ``l = l_cell``."""
+    return l_cell + log_odds(sensor_prob)
 
 
 def fuse(readings: Iterable[float], l0: float = 0.0) -> float:
     """Log-odds after fusing the readings (each a sensor probability) into a cell at ``l0``."""
-    l = l0
+    l_cell = l0
     for p in readings:
-        l = update(l, p)
-    return l
+        l_cell = update(l_cell, p)
+    return l_cell
 
 
-def clamp(l: float, l_min: float, l_max: float) -> float:
-    """``l`` limited to ``[l_min, l_max]``."""
-    return min(max(l, l_min), l_max)
+def clamp(l_cell: float, l_min: float, l_max: float) -> float:
+    """The log-odds ``l_cell`` limited to ``[l_min, l_max]``."""
+    return min(max(l_cell, l_min), l_max)
 
 
 def fuse_clamped(readings: Iterable[float], l_min: float, l_max: float, l0: float = 0.0) -> float:
     """Like :func:`fuse`, clamping after every reading."""
-    l = l0
+    l_cell = l0
     for p in readings:
-        l = clamp(update(l, p), l_min, l_max)
-    return l
+        l_cell = clamp(update(l_cell, p), l_min, l_max)
+    return l_cell
 
 
 def readings_to_reach(l_start: float, l_target: float, sensor_prob: float) -> int:
@@ -70,4 +70,5 @@ def readings_to_flip(l_start: float, free_prob: float) -> int:
 def grid_cells(side: float, resolution: float, dims: int = 2) -> int:
     """Cells of a dense square (``dims = 2``) or cubic (``dims = 3``) grid, ``side`` metres
     across with cells ``resolution`` metres wide."""
-    return round(side / resolution) ** dims
+    per_side = round(side / resolution)
+    return math.prod([per_side] * dims)

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from statistics import NormalDist
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -44,12 +45,15 @@ def rotation_y(angle: float) -> Array:
 
 def essential_from_pose(t: ArrayLike, R: ArrayLike) -> Array:
     """``E = [t]× R`` (3 × 3) for the translation ``t`` (3,) and rotation ``R`` (3 × 3)."""
-    return skew(t) @ np.asarray(R, dtype=float)
+    E: Array = skew(t) @ np.asarray(R, dtype=float)
+    return E
 
 
 def epipolar_residual(E: ArrayLike, x: ArrayLike, x2: ArrayLike) -> float:
     """``x′ᵀ E x``: ``x`` (3,) is the point in image 1, ``x2`` (3,) its match ``x′`` in image 2."""
-    return float(np.asarray(x2, dtype=float) @ np.asarray(E, dtype=float) @ np.asarray(x, dtype=float))
+    return float(
+        np.asarray(x2, dtype=float) @ np.asarray(E, dtype=float) @ np.asarray(x, dtype=float)
+    )
 
 
 def singular_values(M: ArrayLike) -> Array:
@@ -69,14 +73,16 @@ def fundamental_from_essential(E: ArrayLike, K: ArrayLike, K2: ArrayLike | None 
     ``p = K x`` (image 1, intrinsics ``K``) and ``p′ = K′ x′`` (image 2, ``K′``, default ``K``)."""
     K1 = np.asarray(K, dtype=float)
     K2m = K1 if K2 is None else np.asarray(K2, dtype=float)
-    return np.linalg.inv(K2m).T @ np.asarray(E, dtype=float) @ np.linalg.inv(K1)
+    F: Array = np.linalg.inv(K2m).T @ np.asarray(E, dtype=float) @ np.linalg.inv(K1)
+    return F
 
 
 def essential_from_fundamental(F: ArrayLike, K: ArrayLike, K2: ArrayLike | None = None) -> Array:
     """``E = K′ᵀ F K`` (3 × 3), the inverse of :func:`fundamental_from_essential`."""
     K1 = np.asarray(K, dtype=float)
     K2m = K1 if K2 is None else np.asarray(K2, dtype=float)
-    return K2m.T @ np.asarray(F, dtype=float) @ K1
+    E: Array = K2m.T @ np.asarray(F, dtype=float) @ K1
+    return E
 
 
 def intrinsics(f: float, cx: float, cy: float) -> Array:
@@ -106,10 +112,15 @@ def all_samples_fail(inlier_ratio: float, sample_size: int, iterations: int) -> 
 
 
 def chi2_quantile(confidence: float, dof: int) -> float:
-    """The ``confidence`` quantile of the χ² distribution with ``dof`` degrees of freedom."""
-    from scipy.stats import chi2
-
-    return float(chi2.ppf(confidence, dof))
+    """The ``confidence`` quantile of the χ² distribution with ``dof`` = 1 or 2 degrees of freedom,
+    in closed form: χ²₁ is the square of a standard normal, so its quantile is ``z²`` with
+    ``z`` the ``(1 + p)/2`` normal quantile; χ²₂ is exponential with mean 2, ``−2 ln(1 − p)``."""
+    if dof == 1:
+        z = NormalDist().inv_cdf((1 + confidence) / 2)
+        return z * z
+    if dof == 2:
+        return -2.0 * math.log(1 - confidence)
+    raise ValueError(f"chi2_quantile: dof must be 1 or 2, got {dof}")
 
 
 def sampson_threshold(sigma: float, confidence: float) -> float:
