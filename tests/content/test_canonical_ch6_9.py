@@ -177,3 +177,38 @@ def test_lesson_figures_that_the_course_corrects() -> None:
     assert logit(0.95) == pytest.approx(2.944, abs=1e-3)
     # a cell seen 50 times at 0.9 needs 130 free readings at 0.3, not "50+"
     assert EXPECTED["occupancy/unclamped-flip"] == 130
+
+
+def _prose(name: str) -> str:
+    return " ".join((ROOT / "chapters" / name).read_text(encoding="utf-8").split())
+
+
+def test_prose_figures_come_from_the_course_library() -> None:
+    """The figures quoted in the chapters' prose are the library's (not typed-in seed figures)."""
+    from slamcourse.slam import capstone, occupancy, vision
+
+    ransac = [vision.ransac_iterations(w, s, 0.99) for w, s in [(0.5, 5), (0.8, 5), (0.5, 8)]]
+    ch6 = _prose("06-vision.md")
+    assert f"this is {ransac[0]} iterations" in ch6
+    assert f"146 becomes {ransac[1]}" in ch6 and f"it becomes {ransac[2]}" in ch6
+    assert f"95 % quantile is {vision.chi2_quantile(0.95, 1):.2f}" in ch6
+
+    ch8 = _prose("08-occupancy.md")
+    l_occ, l_free = occupancy.log_odds(0.9), occupancy.log_odds(0.3)
+    assert f"A reading of 0.9 adds {l_occ:.3f}" in ch8 and f"adds ${l_free:.3f}$" in ch8
+    assert f"$p = 0.95$ is $l = {occupancy.log_odds(0.95):.3f}$" in ch8
+    assert f"outweighs ${l_occ:.3f} / {-l_free:.3f} \\approx {l_occ / -l_free:.1f}$" in ch8
+    after_two = occupancy.fuse([0.9, 0.3])
+    assert f"$l = {after_two:.3f}$" in ch8
+    words = ["zero", "one", "two", "three", "four", "five", "six", "seven", "eight", "nine"]
+    assert f"that is {words[occupancy.readings_to_reach(after_two, 0.0, 0.3)]}, bring" in ch8
+    flips = occupancy.readings_to_flip(occupancy.fuse([0.9] * 50), 0.3)
+    assert f"survives {flips} scans" in ch8
+    assert f"from $l = 5$, {words[occupancy.readings_to_flip(5, 0.3)]} free readings" in ch8
+    assert f"\\approx {occupancy.probability(5):.3f}$" in ch8
+
+    ch9 = _prose("09-capstone.md")
+    assert f"At 1 cm the same office takes {capstone.grid_bytes(50, 0.01) / 1e6:.0f} MB" in ch9
+    assert f"at 5 mm {capstone.grid_bytes(50, 0.005) / 1e6:.0f} MB" in ch9
+    _, headroom = capstone.frame_headroom(10, [0.5, 15, 5, 10, 30, 20])
+    assert round(headroom / 100, 1) == 0.2 and "A fifth of the frame to spare" in ch9
