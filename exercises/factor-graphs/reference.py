@@ -182,3 +182,63 @@ def mistake_star_squared(leaves: int) -> int:
 def mistake_star_leaves(leaves: int) -> int:
     """``k``: one new edge per leaf."""
     return leaves
+
+
+# --- elimination on a chain (these call the course library ``slamcourse.slam.factor``) ----
+
+from slamcourse.slam import factor as _factor  # noqa: E402
+
+
+def chain_fill_edge(num_poses: int, eliminated: int) -> list[int]:
+    """The fill-in edge ``[a, b]`` (a < b) created by eliminating pose ``eliminated`` first from
+    the chain ``x0 — … — x(num_poses−1)``."""
+    order = [eliminated] + [k for k in range(num_poses) if k != eliminated]
+    (edge, *_rest) = _factor.eliminate(num_poses, _factor.chain(num_poses), order)
+    return list(edge)
+
+
+def mistake_chain_edge_ends(num_poses: int, eliminated: int) -> list[int]:
+    """The two ends of the chain linked, as if elimination closed a loop."""
+    return [0, num_poses - 1]
+
+
+def mistake_chain_edge_kept_node(num_poses: int, eliminated: int) -> list[int]:
+    """An edge that still touches the eliminated node (``[k − 1, k]``), which already existed."""
+    return [eliminated - 1, eliminated]
+
+
+def middle_out_fill(num_poses: int, start: int) -> int:
+    """Fill-in of eliminating a chain from pose ``start`` outwards to the end
+    (``start, start+1, …, n−1``), then ``start−1`` down to ``0``."""
+    order = list(range(start, num_poses)) + list(range(start - 1, -1, -1))
+    return _factor.fill_in(num_poses, _factor.chain(num_poses), order)
+
+
+def mistake_middle_out_none(num_poses: int, start: int) -> int:
+    """"A chain never fills in": true only when eliminated from an end."""
+    return 0
+
+
+def mistake_middle_out_first_only(num_poses: int, start: int) -> int:
+    """Only the first elimination counted as creating an edge."""
+    return 1
+
+
+def constraint_surplus(num_poses: int, num_landmarks: int, num_observations: int,
+                       pose_dof: int, landmark_dof: int) -> int:
+    """Scalar constraints minus scalar unknowns."""
+    return (_factor.constraint_dof(num_poses, num_observations, pose_dof, landmark_dof)
+            - _factor.unknown_dof(num_poses, num_landmarks, pose_dof, landmark_dof))
+
+
+def mistake_surplus_variables(num_poses: int, num_landmarks: int, num_observations: int,
+                              pose_dof: int, landmark_dof: int) -> int:
+    """Constraints minus the number of variables (not their degrees of freedom)."""
+    return (_factor.constraint_dof(num_poses, num_observations, pose_dof, landmark_dof)
+            - (num_poses + num_landmarks))
+
+
+def mistake_surplus_factors(num_poses: int, num_landmarks: int, num_observations: int,
+                            pose_dof: int, landmark_dof: int) -> int:
+    """Factors minus variables, each counted once."""
+    return (num_poses + num_observations) - (num_poses + num_landmarks)

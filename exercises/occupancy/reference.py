@@ -193,3 +193,88 @@ def mistake_grid_not_squared(side: float, resolution: float, bytes_per_cell: flo
 def mistake_grid_kilobytes(side: float, resolution: float, bytes_per_cell: float) -> float:
     """Bytes divided by 1000 only once (kilobytes reported as megabytes)."""
     return grid_megabytes(side, resolution, bytes_per_cell) * 1000
+
+
+# --- contrary readings, clamping, 3D grids (these call ``slamcourse.slam.occupancy``) -------
+
+from slamcourse.slam import occupancy as _occ  # noqa: E402
+
+
+def back_to_even(p1: float, p2: float,
+                 **_derived: float) -> int:
+    """After one reading ``p1`` and one ``p2`` (from l = 0, ending at l > 0): the number of further
+    readings ``p2`` that bring the cell back to ``p ≤ 0.5``."""
+    return _occ.readings_to_reach(_occ.fuse([p1, p2]), 0.0, p2)
+
+
+def mistake_back_to_even_first_free_ignored(p1: float, p2: float,
+                                            **_derived: float) -> int:
+    """The first contrary reading forgotten: ``⌈logit(p1) / |logit(p2)|⌉`` from the occupied
+    reading alone (the classic 2.6 → 3 slip)."""
+    return _occ.readings_to_reach(_occ.fuse([p1]), 0.0, p2)
+
+
+def mistake_back_to_even_floor(p1: float, p2: float,
+                               **_derived: float) -> int:
+    """Rounded down: the cell is then still just above 0.5."""
+    return math.floor(_occ.fuse([p1, p2]) / -_occ.log_odds(p2))
+
+
+def mistake_back_to_even_cancel(p1: float, p2: float,
+                                **_derived: float) -> int:
+    """Readings assumed to cancel one for one: one occupied and one free are already even."""
+    return 0
+
+
+def unclamped_flip(n_occ: int, p_occ: float, p_free: float,
+                   **_derived: float) -> int:
+    """Readings ``p_free`` that take a cell seen ``n_occ`` times as ``p_occ`` (from l = 0, no
+    clamping) strictly below l = 0."""
+    return _occ.readings_to_flip(_occ.fuse([p_occ] * n_occ), p_free)
+
+
+def mistake_flip_symmetric(n_occ: int, p_occ: float, p_free: float,
+                           **_derived: float) -> int:
+    """"As many contrary readings as supporting ones": true only when logit(p_free) =
+    −logit(p_occ)."""
+    return n_occ
+
+
+def mistake_flip_floor(n_occ: int, p_occ: float, p_free: float,
+                       **_derived: float) -> int:
+    """``⌊l / |l_free|⌋``: the cell is then still (barely) occupied."""
+    return math.floor(_occ.fuse([p_occ] * n_occ) / -_occ.log_odds(p_free))
+
+
+def clamped_flip(n_occ: int, p_occ: float, p_free: float, l_max: float,
+                 **_derived: float) -> int:
+    """Like :func:`unclamped_flip`, with the log-odds clamped to ``[−l_max, l_max]``."""
+    l = _occ.fuse_clamped([p_occ] * n_occ, -l_max, l_max)
+    return _occ.readings_to_flip(l, p_free)
+
+
+def mistake_clamped_flip_ignored(n_occ: int, p_occ: float, p_free: float, l_max: float,
+                                 **_derived: float) -> int:
+    """The clamp ignored: as many readings as for the unclamped cell."""
+    return unclamped_flip(n_occ, p_occ, p_free)
+
+
+def mistake_clamped_flip_floor(n_occ: int, p_occ: float, p_free: float, l_max: float,
+                               **_derived: float) -> int:
+    """``⌊l_max / |l_free|⌋``: the cell is then still (barely) occupied."""
+    return math.floor(l_max / -_occ.log_odds(p_free))
+
+
+def grid_3d_terabytes(side: float, resolution: float, bytes_per_cell: float) -> float:
+    """Memory (TB, 10¹² bytes) of a dense cubic grid ``side`` metres on each edge."""
+    return _occ.grid_cells(side, resolution, 3) * bytes_per_cell / 1e12
+
+
+def mistake_grid_3d_squared(side: float, resolution: float, bytes_per_cell: float) -> float:
+    """A 2D grid's cell count (squared, not cubed)."""
+    return _occ.grid_cells(side, resolution, 2) * bytes_per_cell / 1e12
+
+
+def mistake_grid_3d_gigabytes(side: float, resolution: float, bytes_per_cell: float) -> float:
+    """The size in gigabytes reported as terabytes."""
+    return grid_3d_terabytes(side, resolution, bytes_per_cell) * 1000

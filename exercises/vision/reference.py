@@ -287,3 +287,160 @@ def mistake_translation_baseline(scale: float, dx: float, dy: float, dz: float,
                                  baseline: float) -> list[float]:
     """The stereo baseline used as the scale."""
     return [baseline * dx, baseline * dy, baseline * dz]
+
+
+# --- the degrees of freedom of E and F, and the singular-value test ------------------------
+# (these call the course library ``slamcourse.slam.vision``)
+
+from slamcourse.slam import vision as _vision  # noqa: E402
+
+
+def essential_dof() -> int:
+    """Degrees of freedom of E: 3 (rotation) + 3 (translation) − 1 (scale)."""
+    return _vision.ESSENTIAL_DOF
+
+
+def mistake_dof_scale_kept() -> int:
+    """The 6 pose parameters, the invisible scale not removed."""
+    return 6
+
+
+def mistake_dof_entries() -> int:
+    """The 9 entries of a 3 × 3 matrix."""
+    return 9
+
+
+def mistake_dof_entries_up_to_scale() -> int:
+    """9 entries minus the scale: what the linear 8-point algorithm assumes."""
+    return 8
+
+
+def mistake_dof_fundamental() -> int:
+    """The 7 degrees of freedom of the fundamental matrix F."""
+    return _vision.FUNDAMENTAL_DOF
+
+
+def fundamental_dof() -> int:
+    """Degrees of freedom of F: 9 entries − 1 (scale) − 1 (det F = 0)."""
+    return _vision.FUNDAMENTAL_DOF
+
+
+def mistake_fdof_no_rank() -> int:
+    """9 − 1: the rank-2 constraint det F = 0 forgotten."""
+    return 8
+
+
+def mistake_fdof_essential() -> int:
+    """The 5 degrees of freedom of E (F has no rotation-and-translation structure)."""
+    return _vision.ESSENTIAL_DOF
+
+
+def lesson_matrix(a: float, b: float) -> list[list[float]]:
+    """The 3 × 3 matrix ``[[0, −1, 0], [1, 0, −a], [0, b, 0]]`` (the lesson's has a = 0.5,
+    b = 0.3)."""
+    return [[0.0, -1.0, 0.0], [1.0, 0.0, -a], [0.0, b, 0.0]]
+
+
+def matrix_singular_values(a: float, b: float) -> list[float]:
+    """Singular values (largest first) of :func:`lesson_matrix`."""
+    return [float(s) for s in _vision.singular_values(lesson_matrix(a, b))]
+
+
+def mistake_singular_squared(a: float, b: float) -> list[float]:
+    """The eigenvalues of ``MᵀM`` (the squared singular values), square root not taken."""
+    return [float(s) ** 2 for s in _vision.singular_values(lesson_matrix(a, b))]
+
+
+def pose_essential(tx: float, ty: float, tz: float, angle: float) -> list[list[float]]:
+    """``E = [t]× R_z(angle)`` for the exercise's pose."""
+    return _vision.essential_from_pose([tx, ty, tz], _vision.rotation_z(angle)).tolist()
+
+
+def essential_singular_values(tx: float, ty: float, tz: float, angle: float,
+                              **_derived: float) -> list[float]:
+    """Singular values of ``[t]× R``: ``(|t|, |t|, 0)``."""
+    return [float(s) for s in _vision.singular_values(pose_essential(tx, ty, tz, angle))]
+
+
+def mistake_essential_sv_squared(tx: float, ty: float, tz: float, angle: float,
+                                 **_derived: float) -> list[float]:
+    """``(|t|², |t|², 0)``: the eigenvalues of ``EᵀE``, square root not taken."""
+    return [float(s) ** 2 for s in essential_singular_values(tx, ty, tz, angle)]
+
+
+def mistake_essential_sv_translation(tx: float, ty: float, tz: float,
+                                     angle: float,
+                                     **_derived: float) -> list[float]:
+    """The absolute translation components, largest first, taken for the singular values."""
+    return sorted((abs(tx), abs(ty), abs(tz)), reverse=True)
+
+
+# --- from E to F ----------------------------------------------------------------------------
+
+
+def _k(f: float, cx: float, cy: float) -> NDArray[np.float64]:
+    return _vision.intrinsics(f, cx, cy)
+
+
+def fundamental_of_translation(tx: float, ty: float, tz: float, f: float, cx: float,
+                               cy: float) -> list[list[float]]:
+    """``F = K⁻ᵀ E K⁻¹`` with ``E = [t]×`` (no rotation) and both cameras' ``K`` alike."""
+    E = _vision.skew([tx, ty, tz])
+    F = _vision.fundamental_from_essential(E, _k(f, cx, cy))
+    F[np.abs(F) < 1e-12 * np.abs(F).max()] = 0.0  # round-off of entries that are exactly 0
+    return F.tolist()
+
+
+def mistake_fundamental_direction(tx: float, ty: float, tz: float, f: float, cx: float,
+                                  cy: float) -> list[list[float]]:
+    """``Kᵀ E K``: the formula that goes from F back to E, applied the wrong way."""
+    K = _k(f, cx, cy)
+    return (K.T @ _vision.skew([tx, ty, tz]) @ K).tolist()
+
+
+def mistake_fundamental_no_transpose(tx: float, ty: float, tz: float, f: float, cx: float,
+                                     cy: float) -> list[list[float]]:
+    """``K⁻¹ E K⁻¹``: the transpose on the left factor forgotten."""
+    Ki = np.linalg.inv(_k(f, cx, cy))
+    return (Ki @ _vision.skew([tx, ty, tz]) @ Ki).tolist()
+
+
+def mistake_fundamental_sides_swapped(tx: float, ty: float, tz: float, f: float, cx: float,
+                                      cy: float) -> list[list[float]]:
+    """``K⁻¹ E K⁻ᵀ``: the transposed inverse put on the wrong side."""
+    Ki = np.linalg.inv(_k(f, cx, cy))
+    return (Ki @ _vision.skew([tx, ty, tz]) @ Ki.T).tolist()
+
+
+# --- RANSAC: better matches, bigger samples, the threshold ----------------------------------
+
+
+def mistake_ransac_outlier_as_inlier(inlier_ratio: float, sample_size: int,
+                                     confidence: float) -> int:
+    """The outlier fraction ``1 − w`` used as if it were the inlier ratio."""
+    return _vision.ransac_iterations(1 - inlier_ratio, sample_size, confidence)
+
+
+def mistake_ransac_five_point(inlier_ratio: float, sample_size: int, confidence: float) -> int:
+    """The count for a 5-point sample, whatever the sample size asked."""
+    return _vision.ransac_iterations(inlier_ratio, 5, confidence)
+
+
+def sampson_threshold(sigma: float, confidence: float) -> float:
+    """``τ² = σ² χ²₁(p)`` (px²): threshold on the squared Sampson distance."""
+    return _vision.sampson_threshold(sigma, confidence)
+
+
+def mistake_threshold_unit_sigma(sigma: float, confidence: float) -> float:
+    """``χ²₁(p)`` alone: the noise level left out."""
+    return _vision.chi2_quantile(confidence, 1)
+
+
+def mistake_threshold_sigma_not_squared(sigma: float, confidence: float) -> float:
+    """``σ χ²₁(p)``: a squared distance scaled by σ instead of σ²."""
+    return sigma * _vision.chi2_quantile(confidence, 1)
+
+
+def mistake_threshold_two_dof(sigma: float, confidence: float) -> float:
+    """``σ² χ²₂(p)``: two degrees of freedom, as for a 2D point error."""
+    return sigma**2 * _vision.chi2_quantile(confidence, 2)
