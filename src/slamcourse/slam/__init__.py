@@ -1,0 +1,8 @@
+"""Reference mathematics of the bundled course, written to read like the chapters.
+
+Each module is one chapter's mathematics, typed, with shapes and units in its docstrings:
+``association`` (Mahalanobis distance, χ² gate), ``drift`` (how odometry error accumulates and
+how a loop closure spreads its correction), ``graph`` (the information form of a pose graph).
+Chapters' ``exercises/<chapter>/reference.py`` files call these functions; the engine itself never
+imports this package (it holds no answers of its own).
+"""
