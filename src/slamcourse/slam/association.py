@@ -57,9 +57,9 @@ def chi2_cdf(x: float, dof: int) -> float:
     """
     if dof < 1:
         raise ValueError(f"dof must be at least 1, got {dof}")
-    if x <= 0:
-        return 0.0
     t = x / 2
+    if t <= 0:  # also a positive x so small that x/2 underflows
+        return 0.0
     # start from a = 1/2 (odd dof) or a = 1 (even dof), then climb a → a + 1 up to dof/2
     if dof % 2:
         a, p = 0.5, math.erf(math.sqrt(t))
