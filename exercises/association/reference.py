@@ -304,3 +304,17 @@ def gate_choice(
     s = [[s00, 0.0], [0.0, s11]]
     d2s = [mahalanobis_squared([nua0, nua1], s), mahalanobis_squared([nub0, nub1], s)]
     return "abc"[gate_decision(d2s, 2, confidence)]  # index −1 picks "c"
+
+
+def mahalanobis_full(nu0: float, nu1: float, s00: float, s11: float) -> float:
+    """``νᵀ S⁻¹ ν`` computed as for any covariance (a linear solve), here ``S = diag(s00, s11)``."""
+    from slamcourse.slam.association import mahalanobis_squared
+
+    return mahalanobis_squared([nu0, nu1], [[s00, 0.0], [0.0, s11]])
+
+
+def mahalanobis_scalar_full(nu: float, s: float) -> float:
+    """``ν S⁻¹ ν`` of a one-entry innovation, by the general formula."""
+    from slamcourse.slam.association import mahalanobis_squared
+
+    return mahalanobis_squared(nu, s)

@@ -160,3 +160,15 @@ def mistake_correction_rigid(num_steps: int, closure_error: float, pose: int) ->
 def mistake_correction_one_share(num_steps: int, closure_error: float, pose: int) -> float:
     """``e/n``: one step's share, not the shares of all ``k`` steps before the pose."""
     return closure_error / num_steps
+
+
+def square_loop_closure_error(bias: float, steps_per_side: int) -> float:
+    """Closure error (m) of the square loop, by dead-reckoning both paths: the estimate drives
+    unit steps, the robot really drives ``1 + bias``; both at headings 0, π/2, π, 3π/2."""
+    from slamcourse.slam.drift import dead_reckoning
+
+    n = int(steps_per_side)
+    headings = np.repeat([0.0, math.pi / 2, math.pi, 3 * math.pi / 2], n)
+    estimated = dead_reckoning(np.ones(4 * n), headings)[-1]
+    true = dead_reckoning(np.full(4 * n, 1.0 + bias), headings)[-1]
+    return float(np.hypot(*(true - estimated)))
