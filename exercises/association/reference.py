@@ -318,3 +318,21 @@ def mahalanobis_scalar_full(nu: float, s: float) -> float:
     from slamcourse.slam.association import mahalanobis_squared
 
     return mahalanobis_squared(nu, s)
+
+
+def joint_gate_threshold(pairings: int, confidence: float) -> float:
+    """The joint-compatibility gate for ``pairings`` range-bearing pairings: χ² with
+    ``2·pairings`` degrees of freedom at ``confidence``."""
+    from slamcourse.slam.association import chi2_quantile
+
+    return chi2_quantile(confidence, 2 * int(pairings))
+
+
+def mistake_joint_sum_of_gates(pairings: int, confidence: float) -> float:
+    """The individual two-DOF gates added up: ``k·χ²₂(p)``."""
+    return int(pairings) * gate_threshold(2, confidence)
+
+
+def mistake_joint_single_gate(pairings: int, confidence: float) -> float:
+    """One measurement's gate, ``χ²₂(p)``, for the whole set."""
+    return gate_threshold(2, confidence)

@@ -62,6 +62,18 @@ def _chain_covariance_nonzeros(n: int) -> int:
     return int(np.count_nonzero(sigma))
 
 
+def _chi2_4_quantile(p: float) -> float:
+    """χ² with 4 degrees of freedom: P(x) = 1 − e^{−x/2}(1 + x/2), inverted by bisection."""
+    low, high = 0.0, 100.0
+    for _ in range(200):
+        mid = (low + high) / 2
+        if 1 - math.exp(-mid / 2) * (1 + mid / 2) < p:
+            low = mid
+        else:
+            high = mid
+    return (low + high) / 2
+
+
 def _gate_choice() -> str:
     d2_a = 0.3**2 / 0.25 + 0.09**2 / 0.01  # 0.36 + 0.81
     d2_b = 0.15**2 / 0.25 + 0.29**2 / 0.01  # 0.09 + 8.41
@@ -80,6 +92,8 @@ CANONICAL: dict[str, Any] = {
     "association/gate-tail": 100 * math.exp(-8.5 / 2),
     "association/nearest-neighbour-bug": 6,
     "association/wrong-association": ["a", "b", "c", "d"],
+    "association/joint-compatibility": ["a"],
+    "association/joint-gate": _chi2_4_quantile(0.95),  # 2 pairings × 2 entries
     # chapter 4: drift
     "drift/systematic-drift": 0.1 * 100,
     "drift/random-drift": math.sqrt(400 * 0.05**2),
@@ -148,6 +162,8 @@ FIGURES = [
     ("03-association.md", f"{1.959964**2:.2f}"),
     ("03-association.md", f"{-2 * math.log(0.01):.2f}"),
     ("03-association.md", f"{100 * math.exp(-3.84 / 2):.1f} %"),
+    ("03-association.md", f"{_chi2_4_quantile(0.95):.2f} at 95 %"),
+    ("03-association.md", f"({2 * -2 * math.log(0.05):.2f})"),
     ("04-drift.md", f"{sum(0.5 * math.sin(0.01 * k) for k in range(1, 101)):.2f} m"),
     ("04-drift.md", f"= {0.005 * sum(range(1, 101)):.2f}$ m"),
     ("04-drift.md", f"{50 * math.sin(1):.2f} m"),
