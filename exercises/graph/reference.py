@@ -323,3 +323,34 @@ def chain_covariance_nonzeros(num_poses: int) -> int:
 def mistake_covariance_like_omega(num_poses: int) -> int:
     """``Σ`` taken to be as sparse as ``Ω``: ``3N − 2``, the tridiagonal count."""
     return 3 * num_poses - 2
+
+
+def _ring_pattern(num_poses: int) -> NDArray[np.bool_]:
+    """Sparsity of ``Ω`` for a chain ``0 → … → N−1`` closed by a loop closure ``N−1 → 0``."""
+    from slamcourse.slam.graph import chain_edges, information_matrix
+
+    edges = [*chain_edges(num_poses), (0, num_poses - 1, 0.0, 1.0)]
+    pattern: NDArray[np.bool_] = information_matrix(num_poses, edges) != 0
+    return pattern
+
+
+def ring_factor_nonzeros(num_poses: int) -> int:
+    """Nonzeros of the Cholesky factor ``L`` of the ring, poses eliminated in chain order."""
+    from slamcourse.slam.graph import cholesky_nonzeros
+
+    return cholesky_nonzeros(_ring_pattern(num_poses))
+
+
+def mistake_ring_no_fill(num_poses: int) -> int:
+    """``L`` taken to have exactly the nonzeros of the lower triangle of ``Ω``: ``2N``."""
+    return int(np.count_nonzero(np.tril(_ring_pattern(num_poses))))
+
+
+def mistake_ring_chain_only(num_poses: int) -> int:
+    """The loop closure forgotten: a chain's factor, ``2N − 1``."""
+    return 2 * num_poses - 1
+
+
+def mistake_ring_dense(num_poses: int) -> int:
+    """A full lower triangle, ``N(N + 1)/2``."""
+    return num_poses * (num_poses + 1) // 2
