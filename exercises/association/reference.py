@@ -215,3 +215,124 @@ def _unambiguous(kw: dict[str, Any]) -> bool:
         return False
     inside = sorted(d for d in d2s if d < gate)
     return len(inside) < 2 or inside[1] - inside[0] > 0.05 * gate
+
+
+# --- the gate in numbers (computed by slamcourse.slam.association) --------------------------
+#
+# The functions below call the course's reference library, which computes the χ² distribution
+# from closed forms; the numbers are the same as scipy's (tests/unit/test_slam_ch3_5.py).
+
+
+def gate_threshold(dof: int, confidence: float) -> float:
+    """The χ² quantile ``χ²_dof(confidence)``: the largest ``d²`` the gate accepts."""
+    from slamcourse.slam.association import chi2_quantile
+
+    return chi2_quantile(confidence, int(dof))
+
+
+def mistake_threshold_for_distance(dof: int, confidence: float) -> float:
+    """``√χ²``: a threshold on ``d`` where one on ``d²`` was asked for."""
+    return math.sqrt(gate_threshold(dof, confidence))
+
+
+def mistake_threshold_other_dof(dof: int, confidence: float) -> float:
+    """The quantile for the other number of degrees of freedom (1 ↔ 2)."""
+    return gate_threshold(3 - int(dof), confidence)
+
+
+def mistake_threshold_lower_tail(dof: int, confidence: float) -> float:
+    """The quantile at ``1 − confidence``: the gate's complement."""
+    return gate_threshold(dof, 1 - confidence)
+
+
+def percent_below(d2: float, dof: int) -> float:
+    """``100·P(χ²_dof ≤ d²)``: the percentage of correct associations at most this far away."""
+    from slamcourse.slam.association import chi2_cdf
+
+    return 100.0 * chi2_cdf(d2, int(dof))
+
+
+def mistake_percent_above(d2: float, dof: int) -> float:
+    """The tail ``100·P(χ²_dof > d²)`` where the fraction below was asked for."""
+    return 100.0 - percent_below(d2, dof)
+
+
+def mistake_percent_other_dof(d2: float, dof: int) -> float:
+    """The CDF for the other number of degrees of freedom (1 ↔ 2)."""
+    return percent_below(d2, 3 - int(dof))
+
+
+def percent_as_far(d2: float, dof: int) -> float:
+    """``100·P(χ²_dof ≥ d²)``: how often a *correct* association lands this far away or further."""
+    from slamcourse.slam.association import chi2_tail
+
+    return 100.0 * chi2_tail(d2, int(dof))
+
+
+def mistake_tail_complement(d2: float, dof: int) -> float:
+    """``100·P(χ² < d²)``: the complement of the tail."""
+    return 100.0 - percent_as_far(d2, dof)
+
+
+def mistake_tail_one_dof(d2: float, dof: int) -> float:
+    """The tail of χ² with one degree of freedom, whatever the measurement's size."""
+    return percent_as_far(d2, 1)
+
+
+def mistake_tail_no_half(d2: float, dof: int) -> float:
+    """``100·e^{−d²}``: the two-DOF tail ``e^{−d²/2}`` with the ½ forgotten."""
+    return 100.0 * math.exp(-d2)
+
+
+def gate_choice(
+    nua0: float,
+    nua1: float,
+    nub0: float,
+    nub1: float,
+    s00: float,
+    s11: float,
+    confidence: float,
+    **_derived: float,
+) -> str:
+    """Which choice is right: ``a`` (associate with A), ``b`` (with B) or ``c`` (new landmark).
+
+    Each candidate's ``d²`` is its innovation's squared Mahalanobis distance with
+    ``S = diag(s00, s11)``; the gate is χ²₂ at ``confidence``; nearest neighbour inside the gate.
+    """
+    from slamcourse.slam.association import gate_decision, mahalanobis_squared
+
+    s = [[s00, 0.0], [0.0, s11]]
+    d2s = [mahalanobis_squared([nua0, nua1], s), mahalanobis_squared([nub0, nub1], s)]
+    return "abc"[gate_decision(d2s, 2, confidence)]  # index −1 picks "c"
+
+
+def mahalanobis_full(nu0: float, nu1: float, s00: float, s11: float) -> float:
+    """``νᵀ S⁻¹ ν`` computed as for any covariance (a linear solve), here ``S = diag(s00, s11)``."""
+    from slamcourse.slam.association import mahalanobis_squared
+
+    return mahalanobis_squared([nu0, nu1], [[s00, 0.0], [0.0, s11]])
+
+
+def mahalanobis_scalar_full(nu: float, s: float) -> float:
+    """``ν S⁻¹ ν`` of a one-entry innovation, by the general formula."""
+    from slamcourse.slam.association import mahalanobis_squared
+
+    return mahalanobis_squared(nu, s)
+
+
+def joint_gate_threshold(pairings: int, confidence: float) -> float:
+    """The joint-compatibility gate for ``pairings`` range-bearing pairings: χ² with
+    ``2·pairings`` degrees of freedom at ``confidence``."""
+    from slamcourse.slam.association import chi2_quantile
+
+    return chi2_quantile(confidence, 2 * int(pairings))
+
+
+def mistake_joint_sum_of_gates(pairings: int, confidence: float) -> float:
+    """The individual two-DOF gates added up: ``k·χ²₂(p)``."""
+    return int(pairings) * gate_threshold(2, confidence)
+
+
+def mistake_joint_single_gate(pairings: int, confidence: float) -> float:
+    """One measurement's gate, ``χ²₂(p)``, for the whole set."""
+    return gate_threshold(2, confidence)

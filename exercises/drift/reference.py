@@ -106,3 +106,69 @@ def lateral_drift_final_heading(step_length: float, heading_rate: float, steps: 
     """Wrong: the whole distance driven at the final heading error,
     ``steps·step·sin(rate·steps)``."""
     return steps * step_length * math.sin(heading_rate * steps)
+
+
+# --- heading drift as a number, and the loop-closure correction ------------------------------
+# (computed by the course's reference library, slamcourse.slam.drift)
+
+
+def heading_drift_value(step_length: float, heading_rate: float, steps: int, **_: float) -> float:
+    """Sideways error (m): ``Σ_{k=1..steps} step_length·sin(heading_rate·k)``."""
+    from slamcourse.slam.drift import lateral_drift as drift
+
+    return drift(step_length, heading_rate, int(steps))
+
+
+def mistake_heading_small_angle(
+    step_length: float, heading_rate: float, steps: int, **_: float
+) -> float:
+    """``sin x ≈ x`` for every step: ``step_length·heading_rate·steps(steps + 1)/2``."""
+    return lateral_drift_small_angle(step_length, heading_rate, int(steps))
+
+
+def mistake_heading_from_zero(
+    step_length: float, heading_rate: float, steps: int, **_: float
+) -> float:
+    """``k = 0 … steps − 1``: the first step driven without heading error."""
+    return lateral_drift_from_zero(step_length, heading_rate, int(steps))
+
+
+def mistake_heading_final(step_length: float, heading_rate: float, steps: int, **_: float) -> float:
+    """The whole distance at the final heading error: ``distance·sin(heading_rate·steps)``."""
+    return lateral_drift_final_heading(step_length, heading_rate, int(steps))
+
+
+def loop_pose_correction(num_steps: int, closure_error: float, pose: int) -> float:
+    """How far (m) a least-squares loop closure moves pose ``pose`` of a 1-D loop of
+    ``num_steps`` equally uncertain odometry steps whose closure disagrees by ``closure_error``
+    (the loop-closure measurement exact, the start pose known): ``e·k/n``."""
+    from slamcourse.slam.drift import loop_closure_correction
+
+    return float(loop_closure_correction([1.0] * int(num_steps), closure_error)[int(pose)])
+
+
+def mistake_correction_last_only(num_steps: int, closure_error: float, pose: int) -> float:
+    """Only the last pose corrected: pose ``k < n`` does not move at all."""
+    return 0.0
+
+
+def mistake_correction_rigid(num_steps: int, closure_error: float, pose: int) -> float:
+    """The whole trajectory shifted by the full error ``e`` (the known start pose moves too)."""
+    return closure_error
+
+
+def mistake_correction_one_share(num_steps: int, closure_error: float, pose: int) -> float:
+    """``e/n``: one step's share, not the shares of all ``k`` steps before the pose."""
+    return closure_error / num_steps
+
+
+def square_loop_closure_error(bias: float, steps_per_side: int) -> float:
+    """Closure error (m) of the square loop, by dead-reckoning both paths: the estimate drives
+    unit steps, the robot really drives ``1 + bias``; both at headings 0, π/2, π, 3π/2."""
+    from slamcourse.slam.drift import dead_reckoning
+
+    n = int(steps_per_side)
+    headings = np.repeat([0.0, math.pi / 2, math.pi, 3 * math.pi / 2], n)
+    estimated = dead_reckoning(np.ones(4 * n), headings)[-1]
+    true = dead_reckoning(np.full(4 * n, 1.0 + bias), headings)[-1]
+    return float(np.hypot(*(true - estimated)))

@@ -221,3 +221,136 @@ def mistake_chain_one_side(num_poses: int) -> float:
 def mistake_chain_fraction(num_poses: int) -> float:
     """The fraction, not the percentage."""
     return chain_block_percent(num_poses) / 100.0
+
+
+# --- more of the lesson's questions (computed by slamcourse.slam.graph) ----------------------
+
+
+def _loop_omega(prior: float, odo_info: float, loop_info: float) -> NDArray[np.float64]:
+    """``Ω`` of the lesson's 3-pose loop: odometry 0→1, 1→2, loop closure 0→2, prior on 0."""
+    from slamcourse.slam.graph import information_matrix
+
+    edges = [(0, 1, 0.0, odo_info), (1, 2, 0.0, odo_info), (0, 2, 0.0, loop_info)]
+    return information_matrix(3, edges, [(0, 0.0, prior)])
+
+
+def loop_omega_matrix(prior: float, odo_info: float, loop_info: float) -> NDArray[np.float64]:
+    """The whole ``Ω`` (3 × 3) of the lesson's 3-pose loop."""
+    return _loop_omega(prior, odo_info, loop_info)
+
+
+def mistake_loop_omega_no_prior(
+    prior: float, odo_info: float, loop_info: float
+) -> NDArray[np.float64]:
+    """The prior left out of ``Ω[0, 0]``."""
+    return _loop_omega(0.0, odo_info, loop_info)
+
+
+def mistake_loop_omega_plus(prior: float, odo_info: float, loop_info: float) -> NDArray[np.float64]:
+    """``+ω`` instead of ``−ω`` off the diagonal."""
+    omega = _loop_omega(prior, odo_info, loop_info)
+    return np.abs(omega)
+
+
+def mistake_loop_omega_no_loop(
+    prior: float, odo_info: float, loop_info: float
+) -> NDArray[np.float64]:
+    """The loop closure left out: a tridiagonal ``Ω``."""
+    return _loop_omega(prior, odo_info, 0.0) + 0.0  # + 0.0 turns −0.0 into 0.0
+
+
+def loop_first_estimate(prior: float, xi0: float, xi1: float, xi2: float) -> float:
+    """``μ₀`` of the lesson's 3-pose loop (all edges ω = 1), from a Cholesky solve."""
+    from slamcourse.slam.graph import solve
+
+    return float(solve(_loop_omega(prior, 1.0, 1.0), [xi0, xi1, xi2])[0])
+
+
+def mistake_first_estimate_diagonal(prior: float, xi0: float, xi1: float, xi2: float) -> float:
+    """``ξ₀ / Ω₀₀``: the couplings to the other poses ignored."""
+    return xi0 / (prior + 2.0)
+
+
+def mistake_first_estimate_prior_only(prior: float, xi0: float, xi1: float, xi2: float) -> float:
+    """``ξ₀ / ω₀``: ξ₀ divided by the prior's information alone."""
+    return xi0 / prior
+
+
+def chain_nonzero_blocks(num_poses: int, loops: int = 0) -> int:
+    """Nonzero blocks of the ``Ω`` of a chain of ``num_poses`` poses with ``loops`` loop closures,
+    each between two poses not already linked: ``N + 2(N − 1) + 2L``."""
+    from slamcourse.slam.graph import nonzero_blocks
+
+    odometry = [(k, k + 1) for k in range(num_poses - 1)]
+    closures = [(k, k + 2) for k in range(loops)]  # any pairs not linked by odometry
+    return nonzero_blocks(num_poses, odometry + closures)
+
+
+def mistake_chain_blocks_one_side(num_poses: int, loops: int = 0) -> int:
+    """Each edge's off-diagonal block counted once: ``N + (N − 1) + L``."""
+    return num_poses + (num_poses - 1) + loops
+
+
+def mistake_chain_blocks_no_diagonal(num_poses: int, loops: int = 0) -> int:
+    """Only the off-diagonal blocks: ``2(N − 1) + 2L``."""
+    return 2 * (num_poses - 1) + 2 * loops
+
+
+def mistake_chain_entries(num_poses: int, loops: int = 0, block: int = 3) -> int:
+    """Nonzero *entries* (``block²`` per block) where blocks were asked for."""
+    return block * block * chain_nonzero_blocks(num_poses, loops)
+
+
+def mistake_loop_blocks_four(num_poses: int, loops: int) -> int:
+    """Four new blocks per loop closure, as if its two diagonal blocks were new too."""
+    return chain_nonzero_blocks(num_poses) + 4 * loops
+
+
+def mistake_loop_blocks_ignored(num_poses: int, loops: int) -> int:
+    """The loop closures forgotten: the plain chain's count."""
+    return chain_nonzero_blocks(num_poses)
+
+
+def chain_covariance_nonzeros(num_poses: int) -> int:
+    """Nonzero entries of ``Σ = Ω⁻¹`` for a 1-D chain with a prior on pose 0: all ``N²``,
+    counted on the actual inverse (entries above 1e-12 in size)."""
+    from slamcourse.slam.graph import chain_edges, information_matrix
+
+    omega = information_matrix(num_poses, chain_edges(num_poses), [(0, 0.0, 1.0)])
+    return int(np.count_nonzero(np.abs(np.linalg.inv(omega)) > 1e-12))
+
+
+def mistake_covariance_like_omega(num_poses: int) -> int:
+    """``Σ`` taken to be as sparse as ``Ω``: ``3N − 2``, the tridiagonal count."""
+    return 3 * num_poses - 2
+
+
+def _ring_pattern(num_poses: int) -> NDArray[np.bool_]:
+    """Sparsity of ``Ω`` for a chain ``0 → … → N−1`` closed by a loop closure ``N−1 → 0``."""
+    from slamcourse.slam.graph import chain_edges, information_matrix
+
+    edges = [*chain_edges(num_poses), (0, num_poses - 1, 0.0, 1.0)]
+    pattern: NDArray[np.bool_] = information_matrix(num_poses, edges) != 0
+    return pattern
+
+
+def ring_factor_nonzeros(num_poses: int) -> int:
+    """Nonzeros of the Cholesky factor ``L`` of the ring, poses eliminated in chain order."""
+    from slamcourse.slam.graph import cholesky_nonzeros
+
+    return cholesky_nonzeros(_ring_pattern(num_poses))
+
+
+def mistake_ring_no_fill(num_poses: int) -> int:
+    """``L`` taken to have exactly the nonzeros of the lower triangle of ``Ω``: ``2N``."""
+    return int(np.count_nonzero(np.tril(_ring_pattern(num_poses))))
+
+
+def mistake_ring_chain_only(num_poses: int) -> int:
+    """The loop closure forgotten: a chain's factor, ``2N − 1``."""
+    return 2 * num_poses - 1
+
+
+def mistake_ring_dense(num_poses: int) -> int:
+    """A full lower triangle, ``N(N + 1)/2``."""
+    return num_poses * (num_poses + 1) // 2

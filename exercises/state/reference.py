@@ -90,14 +90,6 @@ def mistake_planar_sizes_entries(
     return covariance_entry_count(num_landmarks, 3, 2)
 
 
-def mistake_half_of_all_entries(
-    num_landmarks: int, pose_dim: int = 3, landmark_dim: int = 2
-) -> float:
-    """``n²/2``: halving all entries, as if the diagonal were duplicated too."""
-    n = state_dimension(num_landmarks, pose_dim, landmark_dim)
-    return n * n / 2
-
-
 def mistake_diagonal_forgotten(num_landmarks: int, pose_dim: int = 3, landmark_dim: int = 2) -> int:
     """``n(n − 1)/2``: the strict upper triangle, without the diagonal."""
     n = state_dimension(num_landmarks, pose_dim, landmark_dim)
@@ -173,3 +165,17 @@ def state_size_one_landmark_dim(
     """Wrong: one number per landmark (``landmark_dim`` ignored)."""
     n = pose_dim + num_landmarks
     return n, n * n
+
+
+def mistake_half_rounded_down(
+    num_landmarks: int, pose_dim: int = 3, landmark_dim: int = 2
+) -> int:
+    """``⌊n²/2⌋``: all entries halved (the diagonal too), rounded down to a whole count."""
+    n = state_dimension(num_landmarks, pose_dim, landmark_dim)
+    return n * n // 2
+
+
+def mistake_half_rounded_up(num_landmarks: int, pose_dim: int = 3, landmark_dim: int = 2) -> int:
+    """``⌈n²/2⌉``: all entries halved (the diagonal too), rounded up to a whole count."""
+    n = state_dimension(num_landmarks, pose_dim, landmark_dim)
+    return -(-n * n // 2)
