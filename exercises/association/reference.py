@@ -118,7 +118,7 @@ def gate_inputs() -> Any:
     @st.composite
     def draw(draw: Any) -> dict[str, Any]:
         dof = draw(st.sampled_from([1, 2]))
-        confidence = draw(st.floats(0.5, 0.999))
+        confidence = draw(st.floats(0.5, 0.9999))
         factor = draw(st.one_of(st.floats(0.02, 0.95), st.floats(1.05, 4.0)))
         return {
             "d2": chi2_threshold(dof, confidence) * factor,
