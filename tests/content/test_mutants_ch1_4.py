@@ -31,9 +31,8 @@ pytestmark = pytest.mark.slow
 
 
 def _files(role: str) -> list[Path]:
-    return sorted(
-        path for chapter in CHAPTERS for path in (ROOT / "exercises" / chapter / role).glob("*/*.py")
-    )
+    folders = [ROOT / "exercises" / chapter / role for chapter in CHAPTERS]
+    return sorted(path for folder in folders for path in folder.glob("*/*.py"))
 
 
 def _id(path: Path) -> str:

@@ -1,4 +1,4 @@
-# mistake: returns the total position error (distance from the intended end point), not the sideways part
+# mistake: returns the distance from the intended end point (total error), not the sideways part
 import math
 
 

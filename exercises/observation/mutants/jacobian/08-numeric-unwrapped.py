@@ -1,4 +1,4 @@
-# mistake: numeric central differences without wrapping the bearing difference (jumps 2π behind the robot)
+# mistake: numeric central differences, the bearing difference not wrapped (2π jumps behind)
 import math
 
 

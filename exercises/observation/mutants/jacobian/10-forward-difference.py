@@ -1,4 +1,4 @@
-# mistake: a numeric Jacobian by forward differences with a 1 mm step (too coarse close to the landmark)
+# mistake: forward differences with a 1 mm step: too coarse, worst close to the landmark
 import numpy as np
 
 

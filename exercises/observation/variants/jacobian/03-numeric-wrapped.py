@@ -1,4 +1,4 @@
-# method: numeric central differences (step 1e-6), the bearing difference wrapped with atan2(sin, cos)
+# method: numeric central differences (step 1e-6), bearing difference wrapped by atan2(sin, cos)
 import math
 
 

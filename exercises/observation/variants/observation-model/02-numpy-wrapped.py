@@ -1,4 +1,4 @@
-# method: numpy arctan2 and linalg.norm, bearing wrapped through np.angle(exp(i b)); returns an array
+# method: numpy arctan2 and linalg.norm, bearing wrapped by np.angle(exp(i b)); returns an array
 import numpy as np
 
 
