@@ -585,14 +585,14 @@ CASES: list[tuple[str, str, str, str, str | None]] = [
     ),
     (
         "drift/heading-drift",
-        "closed-form",
+        "closed-form-unguarded",  # divides by sin(0) for a perfect heading (rate 0)
         """
         import math
         def lateral_drift(step_length, heading_rate, steps):
             a, n = heading_rate, steps
             return step_length * math.sin(n * a / 2) * math.sin((n + 1) * a / 2) / math.sin(a / 2)
         """,
-        P,
+        F,
         None,
     ),
     (

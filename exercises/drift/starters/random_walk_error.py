@@ -4,8 +4,8 @@ import math
 def random_walk_error(sigma, steps):
     """1-sigma position error after independent odometry steps.
 
-    sigma: standard deviation of one step's error (m), > 0
-    steps: number of steps (int >= 0)
+    sigma: standard deviation of one step's error (m), 0.0001 to 1
+    steps: number of steps (int, 0 to 1_000_000)
 
     Returns the standard deviation (m) of the accumulated error, a float.
     """

@@ -1,0 +1,11 @@
+# mistake: `<=` in the comparison with the best so far: on an exact tie the last one wins
+def nearest_neighbour(z, landmarks, s00, s11, gate):
+    best_index = -1
+    best_d2 = float("inf")
+    for j, predicted in enumerate(landmarks):
+        nu = [z[0] - predicted[0], z[1] - predicted[1]]
+        d2 = nu[0] ** 2 / s00 + nu[1] ** 2 / s11
+        if d2 < gate and d2 <= best_d2:
+            best_index = j
+            best_d2 = d2
+    return best_index

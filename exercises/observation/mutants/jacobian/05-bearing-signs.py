@@ -1,0 +1,12 @@
+# mistake: the bearing row's position entries with the wrong signs (d/dx of atan2 taken as +dy/q)
+import math
+
+
+def range_bearing_jacobian(xr, yr, thr, xj, yj):
+    dx, dy = xj - xr, yj - yr
+    q = dx * dx + dy * dy
+    r = math.sqrt(q)
+    return [
+        [-dx / r, -dy / r, 0.0, dx / r, dy / r],
+        [-dy / q, dx / q, -1.0, dy / q, -dx / q],
+    ]
