@@ -102,14 +102,15 @@ def print_result(
     then what the engine's rules add (practice note, nudge, explanation once passed)."""
     verdict = result.verdict
     out.line(out.style(VERDICT_LABEL[verdict.status], *VERDICT_STYLE[verdict.status]))
-    out.markdown(verdict.feedback)
+    feedback = verdict.feedback
+    out.markdown(feedback[:1].upper() + feedback[1:])
     if verdict.status in ("invalid", "error"):
         out.line(out.style("(no attempt counted)", "dim"))
     elif result.practice:
         out.line(
             out.style(
-                "(practice on the lesson's own numbers: graded, but your own variant is "
-                "what counts)",
+                "(practice on the canonical variant: graded, not counted; your own variant "
+                "is what counts)",
                 "dim",
             )
         )
@@ -205,7 +206,9 @@ def _show_prompt(out: Out, engine: Engine, prompt: Prompt, *, context: bool) -> 
         out.line(f"Your file: {out.style(str(prompt.code_file), 'bold')}")
     if prompt.practice:
         out.line(
-            out.style("(canonical variant: the lesson's own numbers; practice, not counted)", "dim")
+            out.style(
+                "(canonical variant, the chapter's own numbers: practice, not counted)", "dim"
+            )
         )
 
 

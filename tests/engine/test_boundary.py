@@ -109,3 +109,27 @@ def test_piped_output_that_is_cut_short_is_not_a_traceback(private_home: Path) -
     )
     assert len(done.stdout.splitlines()) == 3
     assert "Traceback" not in done.stderr and "BrokenPipe" not in done.stderr
+
+
+def test_the_example_in_a_prompt_is_never_a_right_answer(course_copy: Path, tmp_path: Path) -> None:
+    """With the answer equal to the first example candidate (7/5), the prompt shows another."""
+    path = course_copy / "exercises" / "basics" / "distance.yaml"
+    text = path.read_text()
+    text = text.replace("dx: {canonical: 3", "dx: {canonical: 1.4")
+    path.write_text(
+        text.replace("dy: {canonical: 4, uniform: [1,", "dy: {canonical: 0, uniform: [0,")
+    )
+    settings = Settings(home=tmp_path, workspace=tmp_path / "ws", course=course_copy)
+    with Engine.open(settings) as engine:
+        prompt = engine.pose("basics/distance", canonical=True)
+        assert "e.g. sqrt(2)/2" in prompt.how_to_answer and "7/5" not in prompt.how_to_answer
+        assert engine.submit("basics/distance", "7/5", canonical=True).passed
+
+
+def test_show_names_the_workspace_file_and_writes_the_starter(
+    private_home: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    assert main(["--course", str(FIXTURE_COURSE), "show", "basics/range-bearing"]) == 0
+    out = capsys.readouterr().out
+    path = private_home / "workspace" / "basics" / "range_bearing.py"
+    assert f"Your file: {path}" in out and path.is_file()

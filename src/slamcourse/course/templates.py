@@ -64,6 +64,22 @@ def mat(rows: Any, decimals: int | None = None) -> str:
     return r"\begin{bmatrix} " + body + r" \end{bmatrix}"
 
 
+def shown(value: Any) -> Any:
+    """Every value a template prints without a filter goes through this one rule: floats as
+    ``num`` writes them (``12403`` never ``12403.0``), lists of numbers as ``vec``; anything
+    else unchanged."""
+    value = _plain(value)
+    if isinstance(value, float):
+        return format_number(value)
+    if (
+        isinstance(value, list | tuple)
+        and value
+        and all(isinstance(v, int | float) and not isinstance(v, bool) for v in value)
+    ):
+        return vec(value)
+    return value
+
+
 def _plain(value: Any) -> Any:
     tolist = getattr(value, "tolist", None)
     return tolist() if callable(tolist) else value
@@ -74,7 +90,10 @@ def _environment() -> Any:
     import jinja2
 
     env = jinja2.Environment(
-        undefined=jinja2.StrictUndefined, autoescape=False, keep_trailing_newline=False
+        undefined=jinja2.StrictUndefined,
+        autoescape=False,
+        keep_trailing_newline=False,
+        finalize=shown,
     )
     env.filters.update(
         num=num, angle=angle, vec=vec, mat=mat, about=about, signed=signed, count=count
@@ -114,7 +133,7 @@ def substitute(source: str, context: dict[str, Any]) -> str | None:
             return None
         value = context[name]
         if filt is None:
-            text = str(value)
+            text = str(shown(value))
         elif arg is None:
             text = _FILTERS[filt](value)
         elif filt in ("angle", "about"):  # no argument: let Jinja2 report it
