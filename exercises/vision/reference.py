@@ -229,44 +229,47 @@ def mistake_best_line_returns_count(points: Sequence[Vector], samples: Sequence[
 def ransac_line_inputs() -> Any:
     """Hypothesis strategy for ``best_line``.
 
-    Points (lists ``[x, y]``, metres) are 3–10 points near a random line (perpendicular noise
-    up to 0.2) and 2–8 scattered points, shuffled. ``samples`` holds 2–6 pairs of distinct point
-    indices whose points are at least 0.5 apart. ``threshold`` is in [0.4, 1.0]. Draws are kept
-    only when the best sample is unique and no point lies within 1e-6 of the threshold, so the
-    answer never hinges on a tie or on rounding.
+    ``threshold`` is in [0.05, 1] m. Points (lists ``[x, y]``, metres, within ±30 m) are 3–12
+    points near a random line (perpendicular noise up to 0.8 × threshold) and 2–10 scattered
+    points, shuffled. ``samples`` holds 1–8 pairs of distinct point indices whose points are at
+    least 0.5 m apart; a pair may repeat or appear reversed (RANSAC draws with replacement), so
+    ties happen. Draws are kept only when no point lies within 1e-6 m of the threshold, so the
+    answer never hinges on rounding (exact boundaries are tested by the explicit examples).
     """
     from hypothesis import strategies as st
 
-    num = st.floats(-10.0, 10.0, allow_nan=False, allow_infinity=False)
+    num = st.floats(-30.0, 30.0, allow_nan=False, allow_infinity=False)
 
     @st.composite
     def data(draw: Any) -> dict[str, Any]:
+        threshold = draw(st.floats(0.05, 1.0, allow_nan=False))
         angle = draw(st.floats(0.0, math.pi, allow_nan=False))
-        offset = draw(st.floats(-5.0, 5.0, allow_nan=False))
+        offset = draw(st.floats(-10.0, 10.0, allow_nan=False))
         d = (math.cos(angle), math.sin(angle))
         nrm = (-d[1], d[0])
+        noise = st.floats(-0.8 * threshold, 0.8 * threshold, allow_nan=False)
         points = []
-        for _ in range(draw(st.integers(3, 10))):
-            s = draw(num)
-            e = offset + draw(st.floats(-0.2, 0.2, allow_nan=False))
+        for _ in range(draw(st.integers(3, 12))):
+            s = draw(st.floats(-20.0, 20.0, allow_nan=False))
+            e = offset + draw(noise)
             points.append([e * nrm[0] + s * d[0], e * nrm[1] + s * d[1]])
-        for _ in range(draw(st.integers(2, 8))):
+        for _ in range(draw(st.integers(2, 10))):
             points.append([draw(num), draw(num)])
         points = draw(st.permutations(points))
         n = len(points)
         pair = st.tuples(st.integers(0, n - 1), st.integers(0, n - 1)).filter(
             lambda p: math.dist(points[p[0]], points[p[1]]) >= 0.5)
-        samples = [list(p) for p in draw(st.lists(pair, min_size=2, max_size=6))]
-        threshold = draw(st.floats(0.4, 1.0, allow_nan=False))
+        samples = [list(p) for p in draw(st.lists(pair, min_size=1, max_size=8))]
+        if len(samples) > 1 and draw(st.booleans()):  # a repeated draw, possibly reversed
+            a, b = draw(st.sampled_from(samples))
+            again = [b, a] if draw(st.booleans()) else [a, b]
+            samples.insert(draw(st.integers(0, len(samples))), again)
         return {"points": points, "samples": samples, "threshold": threshold}
 
     def clean(kw: dict[str, Any]) -> bool:
         pts, thr = kw["points"], kw["threshold"]
-        for a, b in kw["samples"]:
-            if any(abs(point_line_distance(pts[a], pts[b], q) - thr) < 1e-6 for q in pts):
-                return False
-        counts = inlier_counts(pts, kw["samples"], thr)
-        return counts.count(max(counts)) == 1
+        return all(abs(point_line_distance(pts[a], pts[b], q) - thr) >= 1e-6
+                   for a, b in kw["samples"] for q in pts)
 
     return data().filter(clean)
 
