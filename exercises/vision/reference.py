@@ -78,11 +78,15 @@ def epipolar_inputs() -> Any:
     [−3, 3]³ m, a proper rotation ``R``), as a list of rows, and two normalised image points
     ``[u, v, 1]`` with ``u, v`` in [−1.5, 1.5] (a field of view up to 112°). Half of the draws
     make ``x2`` the true match of ``x`` (a point 0.5–50 m in front of camera 1 that camera 2
-    also sees within the same range of ``u, v``): there the residual is zero up to rounding."""
+    also sees within the same range of ``u, v``): there the residual is zero up to rounding.
+    A quarter of the draws use an arbitrary ``E`` with entries in [−2, 2] instead (like the
+    lesson's example matrix, which is not the essential matrix of any pose)."""
     from hypothesis import strategies as st
 
     coord = st.floats(-1.5, 1.5, allow_nan=False, allow_infinity=False)
     point = st.builds(lambda u, v: [u, v, 1.0], coord, coord)
+    entry = st.floats(-2.0, 2.0, allow_nan=False, allow_infinity=False)
+    any_matrix = st.lists(st.lists(entry, min_size=3, max_size=3), min_size=3, max_size=3)
 
     @st.composite
     def inputs(draw: Any) -> dict[str, Any]:
@@ -90,6 +94,8 @@ def epipolar_inputs() -> Any:
         E = essential_matrix(pose["t"], pose["R"])
         x = draw(point)
         x2 = draw(point)
+        if draw(st.integers(0, 3)) == 0:
+            return {"E": draw(any_matrix), "x": x, "x2": x2}
         if draw(st.booleans()):
             depth = draw(st.floats(0.5, 50.0, allow_nan=False, allow_infinity=False))
             X2 = np.asarray(pose["R"]) @ (depth * np.asarray(x)) + np.asarray(pose["t"])
