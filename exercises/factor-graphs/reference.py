@@ -47,25 +47,27 @@ def fill_in(n: int, edges: Sequence[Pair], order: Sequence[int]) -> int:
 
 
 def fill_in_inputs() -> Any:
-    """Hypothesis strategy for ``fill_in``: 1–8 nodes, a set of distinct undirected edges (each
-    a list ``[a, b]`` in either orientation, no self-loops) and an elimination order (a
-    permutation of the nodes, as a list)."""
+    """Hypothesis strategy for ``fill_in``: 1–20 nodes, up to 40 distinct undirected edges (each
+    a list ``[a, b]`` in either orientation, no self-loops) plus up to 3 repeats of them (two
+    factors between the same pair of variables, possibly reversed), in any order, and an
+    elimination order (a permutation of the nodes, as a list)."""
     from hypothesis import strategies as st
 
-    def oriented(pair: tuple[int, int]) -> Any:
-        return st.sampled_from([[pair[0], pair[1]], [pair[1], pair[0]]])
-
-    def for_size(n: int) -> Any:
+    @st.composite
+    def inputs(draw: Any) -> dict[str, Any]:
+        n = draw(st.integers(1, 20))
         pairs = [(a, b) for a in range(n) for b in range(a + 1, n)]
+        chosen: list[tuple[int, int]] = []
         if pairs:
-            chosen = st.lists(st.sampled_from(pairs), unique=True, max_size=len(pairs))
-            edges = chosen.flatmap(lambda es: st.tuples(*map(oriented, es)).map(list))
-        else:
-            edges = st.just([])
-        return st.fixed_dictionaries({"n": st.just(n), "edges": edges,
-                                      "order": st.permutations(list(range(n)))})
+            chosen = draw(st.lists(st.sampled_from(pairs), unique=True,
+                                   max_size=min(len(pairs), 40)))
+        if chosen:
+            chosen += draw(st.lists(st.sampled_from(chosen), max_size=3))
+        edges = [[a, b] if draw(st.booleans()) else [b, a] for a, b in chosen]
+        return {"n": n, "edges": draw(st.permutations(edges)),
+                "order": draw(st.permutations(list(range(n))))}
 
-    return st.integers(1, 8).flatmap(for_size)
+    return inputs()
 
 
 def mistake_fill_in_all_pairs(n: int, edges: Sequence[Pair], order: Sequence[int]) -> int:

@@ -71,17 +71,22 @@ def update_ray(log_odds: Sequence[float], hit_index: int, l_occ: float,
 
 
 def ray_inputs() -> Any:
-    """Hypothesis strategy for ``update_ray``: a row of 1–12 cells with log-odds in [−5, 5]
-    (a list), a hit cell inside the row, ``l_occ`` in [0.1, 3] and ``l_free`` in [−3, −0.1]."""
+    """Hypothesis strategy for ``update_ray``: a row of 1–60 cells (a 30 m beam through 0.5 m
+    cells) with log-odds in [−10, 10], as floats or, in a quarter of the draws, as whole numbers
+    in [−3, 3] (a freshly initialised map holds integer zeros); a hit cell inside the row;
+    ``l_occ`` in [0.2, 6.9] and ``l_free`` in [−6.9, −0.2] (inverse sensor models from
+    p = 0.55 to 0.999)."""
     from hypothesis import strategies as st
 
-    value = st.floats(-5.0, 5.0, allow_nan=False, allow_infinity=False)
-    row = st.lists(value, min_size=1, max_size=12)
+    value = st.floats(-10.0, 10.0, allow_nan=False, allow_infinity=False)
+    floats = st.lists(value, min_size=1, max_size=60)
+    whole = st.lists(st.integers(-3, 3), min_size=1, max_size=60)
+    row = st.one_of(floats, floats, floats, whole)
     return row.flatmap(lambda cells: st.fixed_dictionaries({
         "log_odds": st.just(cells),
         "hit_index": st.integers(0, len(cells) - 1),
-        "l_occ": st.floats(0.1, 3.0, allow_nan=False, allow_infinity=False),
-        "l_free": st.floats(-3.0, -0.1, allow_nan=False, allow_infinity=False),
+        "l_occ": st.floats(0.2, 6.9, allow_nan=False, allow_infinity=False),
+        "l_free": st.floats(-6.9, -0.2, allow_nan=False, allow_infinity=False),
     }))
 
 

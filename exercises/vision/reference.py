@@ -74,16 +74,36 @@ def epipolar_residual(E: Matrix, x: Vector, x2: Vector) -> float:
 
 
 def epipolar_inputs() -> Any:
-    """Hypothesis strategy for ``epipolar_residual``: E with entries in [−2, 2] (list of rows),
-    and two normalised image points ``[u, v, 1]`` with ``u, v`` in [−1.5, 1.5]."""
+    """Hypothesis strategy for ``epipolar_residual``: ``E = [t]× R`` of a relative pose (``t`` in
+    [−3, 3]³ m, a proper rotation ``R``), as a list of rows, and two normalised image points
+    ``[u, v, 1]`` with ``u, v`` in [−1.5, 1.5] (a field of view up to 112°). Half of the draws
+    make ``x2`` the true match of ``x`` (a point 0.5–50 m in front of camera 1 that camera 2
+    also sees within the same range of ``u, v``): there the residual is zero up to rounding.
+    A quarter of the draws use an arbitrary ``E`` with entries in [−2, 2] instead (like the
+    lesson's example matrix, which is not the essential matrix of any pose)."""
     from hypothesis import strategies as st
 
-    entry = st.floats(-2.0, 2.0, allow_nan=False, allow_infinity=False)
     coord = st.floats(-1.5, 1.5, allow_nan=False, allow_infinity=False)
-    row = st.lists(entry, min_size=3, max_size=3)
     point = st.builds(lambda u, v: [u, v, 1.0], coord, coord)
-    return st.fixed_dictionaries({"E": st.lists(row, min_size=3, max_size=3),
-                                  "x": point, "x2": point})
+    entry = st.floats(-2.0, 2.0, allow_nan=False, allow_infinity=False)
+    any_matrix = st.lists(st.lists(entry, min_size=3, max_size=3), min_size=3, max_size=3)
+
+    @st.composite
+    def inputs(draw: Any) -> dict[str, Any]:
+        pose = draw(essential_inputs())
+        E = essential_matrix(pose["t"], pose["R"])
+        x = draw(point)
+        x2 = draw(point)
+        if draw(st.integers(0, 3)) == 0:
+            return {"E": draw(any_matrix), "x": x, "x2": x2}
+        if draw(st.booleans()):
+            depth = draw(st.floats(0.5, 50.0, allow_nan=False, allow_infinity=False))
+            X2 = np.asarray(pose["R"]) @ (depth * np.asarray(x)) + np.asarray(pose["t"])
+            if X2[2] > 0.1 and max(abs(X2[0]), abs(X2[1])) <= 1.5 * X2[2]:
+                x2 = [float(X2[0] / X2[2]), float(X2[1] / X2[2]), 1.0]
+        return {"E": E.tolist(), "x": x, "x2": x2}
+
+    return inputs()
 
 
 def mistake_epipolar_transposed(E: Matrix, x: Vector, x2: Vector) -> float:
@@ -215,44 +235,47 @@ def mistake_best_line_returns_count(points: Sequence[Vector], samples: Sequence[
 def ransac_line_inputs() -> Any:
     """Hypothesis strategy for ``best_line``.
 
-    Points (lists ``[x, y]``, metres) are 3–10 points near a random line (perpendicular noise
-    up to 0.2) and 2–8 scattered points, shuffled. ``samples`` holds 2–6 pairs of distinct point
-    indices whose points are at least 0.5 apart. ``threshold`` is in [0.4, 1.0]. Draws are kept
-    only when the best sample is unique and no point lies within 1e-6 of the threshold, so the
-    answer never hinges on a tie or on rounding.
+    ``threshold`` is in [0.05, 1] m. Points (lists ``[x, y]``, metres, within ±30 m) are 3–12
+    points near a random line (perpendicular noise up to 0.8 × threshold) and 2–10 scattered
+    points, shuffled. ``samples`` holds 1–8 pairs of distinct point indices whose points are at
+    least 0.5 m apart; a pair may repeat or appear reversed (RANSAC draws with replacement), so
+    ties happen. Draws are kept only when no point lies within 1e-6 m of the threshold, so the
+    answer never hinges on rounding (exact boundaries are tested by the explicit examples).
     """
     from hypothesis import strategies as st
 
-    num = st.floats(-10.0, 10.0, allow_nan=False, allow_infinity=False)
+    num = st.floats(-30.0, 30.0, allow_nan=False, allow_infinity=False)
 
     @st.composite
     def data(draw: Any) -> dict[str, Any]:
+        threshold = draw(st.floats(0.05, 1.0, allow_nan=False))
         angle = draw(st.floats(0.0, math.pi, allow_nan=False))
-        offset = draw(st.floats(-5.0, 5.0, allow_nan=False))
+        offset = draw(st.floats(-10.0, 10.0, allow_nan=False))
         d = (math.cos(angle), math.sin(angle))
         nrm = (-d[1], d[0])
+        noise = st.floats(-0.8 * threshold, 0.8 * threshold, allow_nan=False)
         points = []
-        for _ in range(draw(st.integers(3, 10))):
-            s = draw(num)
-            e = offset + draw(st.floats(-0.2, 0.2, allow_nan=False))
+        for _ in range(draw(st.integers(3, 12))):
+            s = draw(st.floats(-20.0, 20.0, allow_nan=False))
+            e = offset + draw(noise)
             points.append([e * nrm[0] + s * d[0], e * nrm[1] + s * d[1]])
-        for _ in range(draw(st.integers(2, 8))):
+        for _ in range(draw(st.integers(2, 10))):
             points.append([draw(num), draw(num)])
         points = draw(st.permutations(points))
         n = len(points)
         pair = st.tuples(st.integers(0, n - 1), st.integers(0, n - 1)).filter(
             lambda p: math.dist(points[p[0]], points[p[1]]) >= 0.5)
-        samples = [list(p) for p in draw(st.lists(pair, min_size=2, max_size=6))]
-        threshold = draw(st.floats(0.4, 1.0, allow_nan=False))
+        samples = [list(p) for p in draw(st.lists(pair, min_size=1, max_size=8))]
+        if len(samples) > 1 and draw(st.booleans()):  # a repeated draw, possibly reversed
+            a, b = draw(st.sampled_from(samples))
+            again = [b, a] if draw(st.booleans()) else [a, b]
+            samples.insert(draw(st.integers(0, len(samples))), again)
         return {"points": points, "samples": samples, "threshold": threshold}
 
     def clean(kw: dict[str, Any]) -> bool:
         pts, thr = kw["points"], kw["threshold"]
-        for a, b in kw["samples"]:
-            if any(abs(point_line_distance(pts[a], pts[b], q) - thr) < 1e-6 for q in pts):
-                return False
-        counts = inlier_counts(pts, kw["samples"], thr)
-        return counts.count(max(counts)) == 1
+        return all(abs(point_line_distance(pts[a], pts[b], q) - thr) >= 1e-6
+                   for a, b in kw["samples"] for q in pts)
 
     return data().filter(clean)
 

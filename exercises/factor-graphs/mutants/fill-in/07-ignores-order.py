@@ -1,0 +1,20 @@
+# mistake: eliminates the nodes in numbering order 0, 1, ..., n-1 instead of in `order`
+from itertools import combinations
+
+
+def fill_in(n, edges, order):
+    adj = [set() for _ in range(n)]
+    for a, b in edges:
+        adj[a].add(b)
+        adj[b].add(a)
+    count = 0
+    for v in range(n):
+        for a, b in combinations(adj[v], 2):
+            if b not in adj[a]:
+                adj[a].add(b)
+                adj[b].add(a)
+                count += 1
+        for u in adj[v]:
+            adj[u].discard(v)
+        adj[v].clear()
+    return count

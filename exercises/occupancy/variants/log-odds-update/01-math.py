@@ -1,0 +1,7 @@
+# method: math.log of the odds, added; the logistic function with math.exp
+import math
+
+
+def log_odds_update(current_log_odds, sensor_prob):
+    l = current_log_odds + math.log(sensor_prob / (1 - sensor_prob))
+    return l, 1 / (1 + math.exp(-l))

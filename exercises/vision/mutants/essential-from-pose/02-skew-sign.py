@@ -1,0 +1,8 @@
+# mistake: the skew matrix with the opposite sign convention, -[t]x
+import numpy as np
+
+
+def essential_matrix(t, R):
+    tx, ty, tz = t
+    S = np.array([[0, tz, -ty], [-tz, 0, tx], [ty, -tx, 0]], dtype=float)
+    return S @ np.asarray(R)

@@ -1,0 +1,12 @@
+# mistake: returns a 1-based position (k + 1) instead of the index into samples
+import math
+
+
+def best_line(points, samples, threshold):
+    counts = []
+    for a, b in samples:
+        (ax, ay), (bx, by) = points[a], points[b]
+        length = math.hypot(bx - ax, by - ay)
+        counts.append(sum(abs((bx - ax) * (qy - ay) - (by - ay) * (qx - ax)) / length < threshold
+                          for qx, qy in points))
+    return counts.index(max(counts)) + 1
