@@ -130,3 +130,18 @@ def test_one_broken_exercise_does_not_hide_the_rest(course_copy: Path) -> None:
         course.exercise("basics/pick")
     assert course.exercise("basics/several").kind == "multi"
     assert len(problems_of(course_copy)) == 1
+
+
+def test_code_examples_must_lie_in_the_declared_domain(course_copy: Path) -> None:
+    """Edge examples are part of the stated domain: a value outside it, or text where a number
+    is declared (YAML reads ``1.0e6`` as a string), is a path:line problem."""
+    path = course_copy / "exercises" / "basics" / "range-bearing.yaml"
+    text = path.read_text()
+    text = text.replace("  - {dx: 1, dy: 0, theta: 0}", "  - {dx: 100, dy: 0, theta: 0}")
+    text = text.replace("  - {dx: -1, dy: 0, theta: 0}", "  - {dx: -1, dy: 1.0e6, theta: 0}")
+    path.write_text(text)
+    with pytest.raises(CourseError) as caught:
+        load_course(course_copy).exercise("basics/range-bearing")
+    messages = [str(p) for p in caught.value.problems]
+    assert any("range-bearing.yaml:18: example value dx: 100" in m for m in messages), messages
+    assert any("'1.0e6' is not a number" in m for m in messages), messages

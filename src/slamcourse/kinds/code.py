@@ -122,6 +122,10 @@ class CodeKind(Kind):
             if set(ex) != set(signature):
                 check.add(line, f"an example must give exactly {', '.join(signature)}")
                 continue
+            for arg in arguments:
+                problem_text = _outside_domain(arg, ex[arg.name])
+                if problem_text:
+                    check.add(line, f"example value {arg.name}: {problem_text}")
             examples.append(_plain(ex))
         returns = parse_returns(raw.get("returns"))
         if returns is None:
@@ -430,6 +434,25 @@ def _load_verdict(loaded: Any, filename: str, opts: CodeOptions) -> Verdict:
             "loop at the top level of the file?",
         )
     return Verdict.wrong(f"{filename} stopped the grader's worker while loading: {loaded.message}")
+
+
+def _outside_domain(arg: Any, value: Any) -> str | None:
+    """Why an edge example's value lies outside the argument's declared domain (the prompt's
+    stated domain: graders draw only from it), or None."""
+    if arg.dist == "choice":
+        return None if value in arg.args else f"{value!r} is not one of {list(arg.args)}"
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        return (
+            f"{value!r} is not a number (YAML reads '1.0e6' as text: write 1000000.0)"
+            if isinstance(value, str)
+            else f"{value!r} is not a number"
+        )
+    if arg.dist == "int" and not isinstance(value, int):
+        return f"{value!r} is not a whole number"
+    low, high = arg.args[0], arg.args[1]
+    if not low <= value <= high:
+        return f"{value!r} is outside the declared range [{low}, {high}]; widen the range or fix it"
+    return None
 
 
 def _sentence(text: str) -> str:
