@@ -31,6 +31,7 @@ from slamcourse.engine import Engine
 from slamcourse.errors import AnswerFormatError, CourseError, UsageError
 from slamcourse.kinds import get_kind
 from slamcourse.progress import Progress
+from slamcourse.settings import Settings as EngineSettings
 from slamcourse.validate import validate_exercise
 from slamcourse.verdict import STATUSES, Verdict
 from tests.conftest import FIXTURE_COURSE, REPO
@@ -59,9 +60,12 @@ def _course(name: str) -> Course:
     return FIXTURE if name == "fixture" else REAL
 
 
+NO_RECORD = EngineSettings.from_env(record=False)
+
+
 def grade(course: str, exercise_id: str, answer: str, seed: int = 0) -> Verdict:
-    engine = Engine(_course(course))
-    return engine.check(exercise_id, answer, engine.variant(exercise_id, seed=seed), record=False)
+    engine = Engine(_course(course), NO_RECORD)
+    return engine.submit(exercise_id, answer, seed=seed).verdict
 
 
 def test_the_property_test_covers_every_answer_kind() -> None:
@@ -95,10 +99,10 @@ def test_unreadable_text_is_an_invalid_verdict_in_every_kind(
 
 
 def test_unreadable_answer_is_logged_escaped_and_not_counted(tmp_path: Path) -> None:
-    """Engine.check with progress: this raised UnicodeEncodeError in record_attempt."""
-    with Engine(FIXTURE, Progress.open(tmp_path / "p.sqlite3")) as engine:
-        variant = engine.variant("basics/count")
-        verdict = engine.check("basics/count", "\ud800", variant)
+    """Engine.submit with progress: this raised UnicodeEncodeError in record_attempt."""
+    settings_ = EngineSettings(home=tmp_path, workspace=tmp_path / "ws", course=FIXTURE_COURSE)
+    with Engine(FIXTURE, settings_, Progress.open(tmp_path / "p.sqlite3")) as engine:
+        verdict = engine.submit("basics/count", "\ud800").verdict
         assert verdict.status == "invalid"
         state = engine.state("basics/count")
         assert state.attempts == 0
@@ -127,7 +131,7 @@ def test_cli_answer_with_an_undecodable_byte_is_unreadable(tmp_path: Path) -> No
     out = done.stdout.decode() + done.stderr.decode()
     assert "Traceback" not in out
     assert done.returncode == 1, out
-    assert "unreadable answer: character 2 is not text (the byte 0x80 is not UTF-8)" in out
+    assert "Unreadable answer: character 2 is not text (the byte 0x80 is not UTF-8)" in out
     assert "no attempt counted" in out
 
 
@@ -352,7 +356,7 @@ def test_course_folder_that_is_a_symlink_loop_is_a_usage_error(tmp_path: Path) -
 
 
 def test_chapter_context_of_a_broken_chapter_is_a_course_error(course_copy: Path) -> None:
-    engine = Engine(load_course(course_copy))
+    engine = Engine(load_course(course_copy), NO_RECORD)
     assert engine.course.problems == []  # indexed while the chapter was readable
     _prose_byte(course_copy)
     with pytest.raises(CourseError, match=r"chapters/01-basics\.md:\d+: byte 0xff"):
