@@ -52,9 +52,9 @@ def real(low: float, high: float) -> Any:
     from hypothesis import strategies as st
 
     low, high = float(low), float(high)
-    return st.floats(
-        low, high, allow_nan=False, allow_infinity=False, allow_subnormal=False
-    ).map(lambda x: realistic(x, low, high))
+    return st.floats(low, high, allow_nan=False, allow_infinity=False, allow_subnormal=False).map(
+        lambda x: realistic(x, low, high)
+    )
 
 
 def strategy_for(arguments: tuple[Argument, ...], assume: tuple[str, ...]) -> Any:

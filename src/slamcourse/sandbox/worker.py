@@ -408,8 +408,9 @@ def _flush_learner_output() -> None:
 _BUDGET = int(_CFG.get("out") or 1 << 20)
 _STDOUT = _MutedStream(sys.stdout, _BUDGET)
 _STDERR = _MutedStream(sys.stderr, _BUDGET)
-sys.stdout = sys.__stdout__ = _STDOUT
-sys.stderr = sys.__stderr__ = _STDERR
+sys.stdout, sys.stderr = _STDOUT, _STDERR
+setattr(sys, "__stdout__", _STDOUT)  # noqa: B010 (the name is Final for type checkers)
+setattr(sys, "__stderr__", _STDERR)  # noqa: B010
 
 
 def main() -> int:
