@@ -128,8 +128,7 @@ def write_shipped(spec: ExerciseSpec, seed: int, inputs: list[dict[str, Any]]) -
 
     path = shipped_path(spec)
     lines = ",\n".join(  # keyword arguments as a plain object; their values tagged
-        "    " + json.dumps({k: _encode(v) for k, v in i.items()}, allow_nan=False)
-        for i in inputs
+        "    " + json.dumps({k: _encode(v) for k, v in i.items()}, allow_nan=False) for i in inputs
     )
     head = {
         "format": SHIPPED_FORMAT,
