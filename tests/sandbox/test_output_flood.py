@@ -95,3 +95,30 @@ def test_muted_stream_still_behaves_like_a_stream(make_worker: MakeWorker) -> No
     result = worker.call([])
     assert result.value == [True, "utf-8"], result
     assert result.stdout == "a" and result.stderr == "b\n"
+
+
+def test_verdicts_say_the_output_was_cut() -> None:
+    """Through the grader: a correct, chatty submission passes and is told its output was cut;
+    one that writes around the muted streams fails with a message that says why."""
+    from slamcourse.course.loader import load_course
+    from slamcourse.kinds import get_kind
+    from tests.conftest import FIXTURE_COURSE
+
+    spec = load_course(FIXTURE_COURSE).exercise("basics/range-bearing")
+    kind = get_kind("code")
+    body = "    return math.hypot(dx, dy), math.atan2(dy, dx) - theta\n"
+    chatty = "import math\ndef range_bearing(dx, dy, theta):\n    print('x' * 3_000_000)\n" + body
+    start = time.monotonic()
+    verdict = kind.check_source(spec, chatty, "chatty.py")  # type: ignore[attr-defined]
+    assert verdict.passed and verdict.details["output_cut"] is True  # 300 MB printed
+    assert "output beyond the first 1 MiB per stream was cut" in verdict.feedback
+    assert time.monotonic() - start < 10.0
+    around = (
+        "import math, os\ndef range_bearing(dx, dy, theta):\n"
+        "    os.write(1, b'y' * 3_000_000)\n" + body
+    )
+    verdict = kind.check_source(spec, around, "around.py")  # type: ignore[attr-defined]
+    assert verdict.status == "failed" and verdict.details["output_cut"] is True
+    assert (
+        "printed more than 8 MiB of output" in verdict.feedback and "Print less" in verdict.feedback
+    )
