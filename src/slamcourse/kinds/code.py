@@ -336,9 +336,11 @@ class CodeKind(Kind):
                 details=details,
             )
         if failure.kind in ("crashed", "protocol_error"):
+            from slamcourse.sandbox.runner import FLOOD_MESSAGE
+
             advice = (
                 "Print less."
-                if cut[0]
+                if failure.message.startswith(FLOOD_MESSAGE)
                 else "Do not exit or write to the grader's channels; return the value."
             )
             return Verdict.wrong(

@@ -71,6 +71,7 @@ LoadStatus = Literal[
 ]
 CallStatus = Literal["ok", "raised", "timeout", "crashed", "protocol_error"]
 Fatal = Literal["timeout", "crashed", "protocol_error"]
+FLOOD_MESSAGE = "your code printed more than"  # how a worker killed for its output is described
 _POLL = 0.05  # seconds between checks that the worker is still alive while waiting
 _LOAD_STATUSES = frozenset(
     {"ok", "syntax_error", "import_error", "missing_function", "not_callable", "signature"}
@@ -583,8 +584,8 @@ class Worker:
             self._output_cut = True
             return finish(
                 "crashed",
-                f"your code printed more than {limits.flood_bytes >> 20} MiB of output, so it "
-                "was stopped; print less (not on every call or in a loop)",
+                f"{FLOOD_MESSAGE} {limits.flood_bytes >> 20} MiB of output, so it was stopped; "
+                "print less (not on every call or in a loop)",
             )
 
         def timed_out() -> _Outcome:
