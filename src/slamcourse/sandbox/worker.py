@@ -147,7 +147,7 @@ else:
 
 
 class _MutedStream(io.TextIOBase):
-    """A text stream that passes the first ``budget[0]`` characters to ``real``, then only
+    """A text stream that passes the first ``budget`` characters to ``real``, then only
     counts (``dropped``). stdout and stderr each get one; ``print`` works unchanged."""
 
     def __init__(self, real: Any, budget: int) -> None:
@@ -156,7 +156,7 @@ class _MutedStream(io.TextIOBase):
         self.dropped = 0
 
     def write(self, text: str) -> int:
-        if type(text) is not str:
+        if not _isinstance(text, str):  # as io.TextIOWrapper.write
             raise TypeError(f"write() argument must be str, not {_type_name(type(text))}")
         size = _len(text)
         if self._left > 0:
