@@ -6,7 +6,6 @@ from __future__ import annotations
 import math
 import sys
 
-import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -59,10 +58,9 @@ def test_real_for_reference_strategies(x: float) -> None:
     assert is_realistic(x, 0.5, 2.0)
 
 
-@pytest.mark.slow
 def test_complex_number_observation_model_passes() -> None:
     """A correct observation_model written with complex numbers passes the real exercise,
-    through the sandbox, and in-process on two more seeds of the same strategy."""
+    through the sandbox, and in-process on another seed of the same strategy."""
     from slamcourse.course import reference
     from slamcourse.course.loader import load_course
     from slamcourse.grading.properties import TrustedCallee, run
@@ -82,7 +80,7 @@ def test_complex_number_observation_model_passes() -> None:
     namespace: dict[str, object] = {}
     exec(compile(source, "complex.py", "exec"), namespace)
     opts = spec.options
-    for seed in (1, 2):
+    for seed in (1,):
         outcome = run(
             strategy=kind.strategy(spec),  # type: ignore[attr-defined]
             examples=opts.examples,
