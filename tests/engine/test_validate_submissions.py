@@ -140,3 +140,9 @@ def test_hidden_seed_runs_inputs_no_recording_holds() -> None:
     honest = kind.check_source(spec, SOLUTION, "m.py", hidden_seed=12345)  # type: ignore[attr-defined]
     assert honest.passed and honest.details["hidden_examples"] >= 100
     assert "12345" not in json.dumps([honest.details, hidden.details])  # the secret stays secret
+
+
+def test_hypothesis_version_is_read_without_importlib_metadata() -> None:
+    from importlib.metadata import version
+
+    assert replay.hypothesis_version() == version("hypothesis")
