@@ -186,8 +186,13 @@ def _code_files(
             Problem(
                 shipped,
                 1,
-                f"this recording is {state} (it was drawn for another version of the "
-                f"exercise, its reference.py, the grader or Hypothesis) and is ignored{fix}",
+                (
+                    "this recording is stale (it was drawn for another version of the "
+                    "exercise, its reference.py, the grader or Hypothesis)"
+                    if state == "stale"
+                    else "this recording is unreadable"
+                )
+                + f" and is ignored{fix}",
             )
         )
     return problems
