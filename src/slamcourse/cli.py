@@ -465,7 +465,14 @@ def cmd_validate(args: argparse.Namespace, out: Out) -> int:
             sys.stderr.flush()
 
     try:
-        report = validate_course(root, variants_per_exercise=args.variants, progress=progress)
+        report = validate_course(
+            root,
+            variants_per_exercise=args.variants,
+            progress=progress,
+            min_mutants=args.min_mutants,
+            min_variants=args.min_variants,
+            record=args.record,
+        )
     finally:
         if progress is not None:
             sys.stderr.write("\r\033[2K")
@@ -663,6 +670,25 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
         default=25,
         metavar="N",
         help="random variants per exercise (default 25)",
+    )
+    p.add_argument(
+        "--min-mutants",
+        type=int,
+        default=None,
+        metavar="N",
+        help="wrong implementations required per code exercise (default 8)",
+    )
+    p.add_argument(
+        "--min-variants",
+        type=int,
+        default=None,
+        metavar="M",
+        help="correct implementations by other methods required per code exercise (default 3)",
+    )
+    p.add_argument(
+        "--record",
+        action="store_true",
+        help="(re)write each code exercise's shipped recording of test inputs first",
     )
     p.add_argument("--json", action="store_true")
     return parser

@@ -409,6 +409,7 @@ class Engine:
             filename,
             require_isolation=self.settings.require_isolation,
             spawn=self._take_worker,
+            hidden_seed=self.settings.hidden_seed,
         )
         digest = hashlib.sha256(source.encode("utf-8", "replace")).hexdigest()[:16]
         where = str(path) if path is not None else filename

@@ -68,7 +68,8 @@ class Settings:
 
     ``course`` None means the bundled course. ``record`` False grades without writing progress
     (``check --no-record``). ``require_isolation`` refuses to run learner code without
-    namespace isolation (CI grading).
+    namespace isolation (CI grading). ``hidden_seed`` (grading mode, set by the batch grader
+    from an instructor's secret) makes every code check also run inputs drawn with that seed.
     """
 
     home: Path
@@ -76,6 +77,7 @@ class Settings:
     course: Path | None = None
     require_isolation: bool = False
     record: bool = True
+    hidden_seed: int | None = None  # grading mode: extra property inputs the learner never met
 
     @classmethod
     def from_env(

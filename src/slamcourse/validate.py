@@ -1,4 +1,10 @@
-"""``slamcourse validate``: prove every exercise of a course sound, on many variants."""
+"""``slamcourse validate``: prove every exercise of a course sound, on many variants.
+
+For code exercises it also grades, through the real sandbox, the solution, the starter, every
+mutant (a plausible wrong implementation, which must fail) and every correct variant (another
+method, which must pass); requires at least ``min_mutants`` and ``min_variants`` of them; and
+checks the recording of test inputs shipped with the course (``record=True`` rewrites it).
+"""
 
 from __future__ import annotations
 
@@ -11,6 +17,9 @@ from slamcourse.course.loader import Course, load_course
 from slamcourse.course.model import ExerciseSpec
 from slamcourse.errors import CourseError, GraderError, Problem, relpath
 from slamcourse.kinds import get_kind
+
+MIN_MUTANTS = 8
+MIN_VARIANTS = 3
 
 
 @dataclass
@@ -27,9 +36,18 @@ class Report:
 
 
 def validate_course(
-    root: Path, *, variants_per_exercise: int = 25, progress: Callable[[str], None] | None = None
+    root: Path,
+    *,
+    variants_per_exercise: int = 25,
+    progress: Callable[[str], None] | None = None,
+    min_mutants: int | None = None,
+    min_variants: int | None = None,
+    record: bool = False,
 ) -> Report:
-    """Load every chapter and exercise of the course at ``root`` and check each one."""
+    """Load every chapter and exercise of the course at ``root`` and check each one.
+
+    ``min_mutants``/``min_variants`` default to :data:`MIN_MUTANTS`/:data:`MIN_VARIANTS`;
+    ``record`` (re)writes each code exercise's shipped recording before checking it."""
     course = load_course(root)
     report = Report(list(course.problems))
     placed = set(course.exercise_ids)
@@ -48,12 +66,29 @@ def validate_course(
             continue
         if progress:
             progress(ex_id)
-        report.problems.extend(validate_exercise(course, ex_id, variants_per_exercise, report))
+        report.problems.extend(
+            validate_exercise(
+                course,
+                ex_id,
+                variants_per_exercise,
+                report,
+                min_mutants=min_mutants,
+                min_variants=min_variants,
+                record=record,
+            )
+        )
     return report
 
 
 def validate_exercise(
-    course: Course, exercise_id: str, count: int, report: Report | None = None
+    course: Course,
+    exercise_id: str,
+    count: int,
+    report: Report | None = None,
+    *,
+    min_mutants: int | None = None,
+    min_variants: int | None = None,
+    record: bool = False,
 ) -> list[Problem]:
     """Problems of one exercise over the canonical variant and ``count`` random ones."""
     try:
@@ -63,6 +98,19 @@ def validate_exercise(
     if report is not None:
         report.exercises += 1
     kind = get_kind(spec.kind)
+    before: list[Problem] = []
+    if spec.kind == "code":
+        try:
+            before = _code_files(
+                spec,
+                MIN_MUTANTS if min_mutants is None else min_mutants,
+                MIN_VARIANTS if min_variants is None else min_variants,
+                record,
+            )
+        except CourseError as exc:
+            before = exc.problems
+        except GraderError as exc:
+            before = [Problem(relpath(spec.path, spec.course_root), spec.line, str(exc))]
     seeds = [0] + (list(range(1, count + 1)) if spec.has_variants else [])
     first: dict[tuple[str, int | None], Problem] = {}  # one report per place...
     seen_in: dict[tuple[str, int | None], int] = {}  # ...with the number of variants it hit
@@ -83,12 +131,98 @@ def validate_exercise(
             key = (p.path, p.line)
             first.setdefault(key, p)
             seen_in[key] = seen_in.get(key, 0) + 1
-    problems = []
+    problems = list(before)
     for key, p in first.items():
         times = seen_in[key]
         suffix = f" (in {times} of {checked} variants checked)" if checked > 1 and times > 1 else ""
         problems.append(Problem(p.path, p.line, p.message + suffix))
     return problems
+
+
+def _code_files(
+    spec: ExerciseSpec, min_mutants: int, min_variants: int, record: bool
+) -> list[Problem]:
+    """Enough mutants and correct variants; a shipped recording that is current (or written
+    now, with ``record``)."""
+    from slamcourse.grading import replay
+    from slamcourse.grading.properties import exercise_seed
+    from slamcourse.kinds.code import submission_files
+
+    problems = []
+    where = relpath(spec.path, spec.course_root)
+    mutants, correct = submission_files(spec)
+    folder = relpath(spec.path.parent, spec.course_root)
+    for found, wanted, name, what in (
+        (len(mutants), min_mutants, "mutants", "plausible wrong implementations"),
+        (len(correct), min_variants, "variants", "correct implementations by other methods"),
+    ):
+        if found < wanted:
+            problems.append(
+                Problem(
+                    where,
+                    spec.line,
+                    f"{found} {name} in {folder}/{name}/{spec.path.stem}/, at least {wanted} "
+                    f"needed: add {what} there (see docs/authoring.md, 'Mutants and variants')",
+                )
+            )
+    seed = exercise_seed(spec.id)
+    if record:
+        replay.write_shipped(spec, seed, record_inputs(spec))
+        return problems
+    state = replay.shipped_state(spec, seed)
+    shipped = relpath(replay.shipped_path(spec), spec.course_root)
+    fix = "; run `slamcourse validate --record` to write it"
+    if state == "missing":
+        problems.append(
+            Problem(
+                where,
+                spec.line,
+                f"no recording of test inputs ({shipped}), so a learner's first check runs "
+                f"Hypothesis{fix}",
+            )
+        )
+    elif state != "ok":
+        problems.append(
+            Problem(
+                shipped,
+                1,
+                (
+                    "this recording is stale (it was drawn for another version of the "
+                    "exercise, its reference.py, the grader or Hypothesis)"
+                    if state == "stale"
+                    else "this recording is unreadable"
+                )
+                + f" and is ignored{fix}",
+            )
+        )
+    return problems
+
+
+def record_inputs(spec: ExerciseSpec) -> list[dict[str, object]]:
+    """The inputs a passing run of this exercise draws: the reference run against itself."""
+    from slamcourse.course import reference
+    from slamcourse.grading.properties import TrustedCallee, exercise_seed, run
+
+    kind = get_kind("code")
+    opts = spec.options
+    ref = reference.function(spec, spec.reference or "", spec.reference_line)
+    outcome = run(
+        strategy=kind.strategy(spec),  # type: ignore[attr-defined]
+        examples=opts.examples,
+        signature=opts.signature,
+        returns=opts.returns,
+        tolerance=opts.tolerance,
+        reference=ref,
+        call=TrustedCallee(ref).call,
+        max_examples=opts.max_examples,
+        seed=exercise_seed(spec.id),
+    )
+    if outcome.failure is not None:
+        raise GraderError(
+            f"cannot record test inputs: the reference does not pass against itself on "
+            f"{outcome.failure.kwargs} ({outcome.failure.message})"
+        )
+    return outcome.drawn
 
 
 def _render_all(spec: ExerciseSpec, params: dict[str, object], answer: object) -> None:

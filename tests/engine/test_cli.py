@@ -70,13 +70,16 @@ def test_progress_commands(capsys: pytest.CaptureFixture[str], private_home: Pat
 def test_validate_reports_broken_course(
     capsys: pytest.CaptureFixture[str], course_copy: Path
 ) -> None:
+    none = ["--min-mutants", "0", "--min-variants", "0"]  # the fixture ships none
     path = course_copy / "exercises/basics/count.yaml"
     path.write_text(path.read_text().replace("exact: true", "exakt: true"))
-    code = main(["validate", str(course_copy), "--variants", "3"])
+    code = main(["validate", str(course_copy), "--variants", "3", *none])
     out = capsys.readouterr().out
     assert code == 1
     assert "exercises/basics/count.yaml:9: unknown key 'exakt'" in out
-    assert main(["validate", str(FIXTURE_COURSE), "--variants", "3"]) == 0
+    assert main(["validate", str(FIXTURE_COURSE), "--variants", "3", *none]) == 0
+    assert main(["validate", str(FIXTURE_COURSE), "--variants", "1"]) == 1  # 8/3 by default
+    assert "at least 8" in capsys.readouterr().out
 
 
 def test_corrupt_progress_is_a_clear_error(

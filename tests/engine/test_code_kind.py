@@ -164,7 +164,8 @@ def test_validator_runs_solution_starter_and_misconceptions(course_copy: Path) -
     from slamcourse.validate import validate_exercise
 
     course = load_course(course_copy)
-    assert validate_exercise(course, "basics/range-bearing", 1) == []
+    none = {"min_mutants": 0, "min_variants": 0}
+    assert validate_exercise(course, "basics/range-bearing", 1, **none) == []
     solution = course_copy / "exercises/basics/solutions/range_bearing.py"
     solution.write_text(solution.read_text().replace("math.hypot(dx, dy)", "dx"))
     ref = course_copy / "exercises/basics/reference.py"
@@ -174,7 +175,8 @@ def test_validator_runs_solution_starter_and_misconceptions(course_copy: Path) -
         )
     )
     problems = [
-        str(p) for p in validate_exercise(load_course(course_copy), "basics/range-bearing", 1)
+        str(p)
+        for p in validate_exercise(load_course(course_copy), "basics/range-bearing", 1, **none)
     ]
     assert any("the solution range_bearing.py fails" in p for p in problems), problems
     assert any("misconception 'no-heading' passes every test input" in p for p in problems)
@@ -225,12 +227,18 @@ def test_doctor_reports_isolation(capsys: pytest.CaptureFixture[str]) -> None:
     assert info["isolation"] in ("namespaces", "rlimits") and info["isolation_reason"]
 
 
-def test_replayed_recording_gives_the_same_verdicts(private_home: Path) -> None:
+def test_replayed_recording_gives_the_same_verdicts(private_home: Path, course_copy: Path) -> None:
     """After a passing run, checks replay the recorded inputs; verdicts do not change."""
     from slamcourse.grading import replay
     from slamcourse.grading.properties import exercise_seed
 
-    key = replay.recording_key(SPEC, exercise_seed(SPEC.id), SPEC.options.max_examples)
+    (course_copy / "exercises/basics/recordings/range-bearing.json").unlink()  # none shipped
+    spec = load_course(course_copy).exercise(SPEC.id)
+
+    def grade(source: str) -> Verdict:
+        return get_kind("code").check_source(spec, source, "attempt.py")  # type: ignore[attr-defined,no-any-return]
+
+    key = replay.recording_key(spec, exercise_seed(spec.id), spec.options.max_examples)
     assert replay.load(key) is None
     first = grade(CORRECT["math.hypot, unwrapped"])  # full Hypothesis run, then recorded
     inputs = replay.load(key)
@@ -249,12 +257,18 @@ def test_replayed_recording_gives_the_same_verdicts(private_home: Path) -> None:
     assert replayed_failure.status == "failed"
 
 
-def test_a_broken_recording_is_ignored(private_home: Path) -> None:
+def test_a_broken_recording_is_ignored(private_home: Path, course_copy: Path) -> None:
     from slamcourse.grading import replay
     from slamcourse.grading.properties import exercise_seed
 
-    key = replay.recording_key(SPEC, exercise_seed(SPEC.id), SPEC.options.max_examples)
+    shipped = course_copy / "exercises/basics/recordings/range-bearing.json"
+    shipped.write_text("{not json")
+    spec = load_course(course_copy).exercise(SPEC.id)
+    key = replay.recording_key(spec, exercise_seed(spec.id), spec.options.max_examples)
     path = private_home / "cache" / "inputs" / f"{key}.json"
     path.parent.mkdir(parents=True)
     path.write_text("{not json")
-    assert grade(CORRECT["math.hypot, unwrapped"]).status == "passed"
+    verdict = get_kind("code").check_source(  # type: ignore[attr-defined]
+        spec, CORRECT["math.hypot, unwrapped"], "a.py"
+    )
+    assert verdict.status == "passed"

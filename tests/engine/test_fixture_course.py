@@ -37,7 +37,9 @@ def test_fixture_course_loads_in_chapter_order() -> None:
 
 
 def test_fixture_course_validates() -> None:
-    report = validate_course(FIXTURE_COURSE, variants_per_exercise=10)
+    report = validate_course(
+        FIXTURE_COURSE, variants_per_exercise=10, min_mutants=0, min_variants=0
+    )
     assert report.problems == []
     assert report.exercises == 11
 

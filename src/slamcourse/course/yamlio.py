@@ -179,6 +179,8 @@ def _cache_file(text: str) -> Path | None:
 
 
 def _cached(text: str) -> Any:
+    from slamcourse.cache import touch
+
     path = _cache_file(text)
     if path is None:
         return _MISSING
@@ -186,9 +188,11 @@ def _cached(text: str) -> Any:
         entry = json.loads(path.read_text(encoding="utf-8"))
         if entry["text"] != text:
             return _MISSING
-        return _decode(entry["data"])
+        data = _decode(entry["data"])
     except (OSError, ValueError, KeyError, TypeError):
         return _MISSING
+    touch(path)  # its last use, for the cache's eviction (slamcourse.cache)
+    return data
 
 
 def _store(text: str, data: Any) -> None:
@@ -196,6 +200,9 @@ def _store(text: str, data: Any) -> None:
         payload = json.dumps({"text": text, "data": _encode(data)})
     except (TypeError, ValueError):  # e.g. a YAML date: simply not cached
         return
+    from slamcourse.cache import evict_if_due
+
+    evict_if_due()
     path = _cache_file(text)
     if path is None:
         return

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import copy
 import hashlib
+import threading
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -20,6 +21,7 @@ from slamcourse.grading.returns import compare, to_plain
 from slamcourse.sandbox import CallResult, LearnerFrame
 
 MAX_RECORDED = 20  # failing inputs kept for recognising misconceptions
+_HYPOTHESIS = threading.RLock()
 
 
 @dataclass(frozen=True)
@@ -88,8 +90,12 @@ def run(
     call: Callable[[Sequence[Any]], CallResult],
     max_examples: int,
     seed: int,
+    shrink: bool = True,
 ) -> Outcome:
-    """Run the property test; returns the outcome (never raises for learner behaviour)."""
+    """Run the property test; returns the outcome (never raises for learner behaviour).
+
+    ``shrink=False`` stops at the first failing input (the verdict's status is the same; the
+    validator uses it for mutants, whose failing input nobody reads)."""
     from hypothesis import HealthCheck, Phase, Verbosity, example, given, settings
     from hypothesis import seed as fixed_seed
 
@@ -143,11 +149,14 @@ def run(
         print_blob=False,
         verbosity=Verbosity.quiet,
         suppress_health_check=list(HealthCheck),
-        phases=(Phase.explicit, Phase.generate, Phase.shrink),
+        phases=(Phase.explicit, Phase.generate, Phase.shrink)
+        if shrink
+        else (Phase.explicit, Phase.generate),
     )(test)
     test = fixed_seed(seed)(test)
     try:
-        test()
+        with _HYPOTHESIS:  # one Hypothesis run at a time in this process (validate uses threads)
+            test()
     except _Fatal as fatal:
         outcome.failure = fatal.failure
     except AssertionError:
@@ -172,8 +181,10 @@ def replay(
 ) -> Outcome | None:
     """Check recorded inputs in order, without Hypothesis (see :mod:`.replay`).
 
-    Returns the passing outcome, or a fatal one (timeout, crash: the same input the full run
-    would stop at). Returns None at the first failing input: the caller then runs in full.
+    Returns the passing outcome; a fatal one (timeout, crash: the same input the full run would
+    stop at); or, at the first input the callee gets wrong, a failing one whose ``failure`` is
+    that input, not shrunk (the caller normally runs Hypothesis in full to shrink it). None when
+    the reference itself fails on a recorded input (the full run reports that properly).
     """
     outcome = Outcome(seed=seed, replayed=True)
     for kwargs in inputs:
@@ -181,15 +192,26 @@ def replay(
         try:
             want = reference(**copy.deepcopy(kwargs))
         except Exception:
-            return None  # the full run reports the reference's failure properly
+            return None
         result = call([kwargs[name] for name in signature])
         if result.status in ("timeout", "crashed", "protocol_error"):
             outcome.failure = Failure(
                 kwargs, want, None, result.error, result.status, stdout=result.stdout
             )
             return outcome
-        if result.status != "ok" or compare(returns, result.value, want, tolerance) is not None:
-            return None
+        if result.status == "raised":
+            outcome.failure = Failure(
+                kwargs, want, None, result.error, "raised", result.frames, result.stdout
+            )
+        else:
+            mismatch = compare(returns, result.value, want, tolerance)
+            if mismatch is None:
+                continue
+            outcome.failure = Failure(
+                kwargs, want, result.value, mismatch.message, "mismatch", stdout=result.stdout
+            )
+        outcome.failures.append(outcome.failure)
+        return outcome
     return outcome
 
 

@@ -8,8 +8,20 @@ same. On the first input that fails, the grader runs Hypothesis in full, which f
 the failure exactly as it would have without the recording.
 
 Only inputs are recorded (never expected values): the reference recomputes those in the grader.
-Recordings live in ``<home>/cache/inputs/`` and are keyed by everything that shapes the draw: the
-exercise file, its reference.py, slamcourse's and Hypothesis's versions, the seed and the count.
+A check looks for a recording in this order:
+
+1. the course's own, **shipped** with it: ``exercises/<chapter>/recordings/<slug>.json``, written
+   by ``slamcourse validate --record`` from a run of the reference against itself, and keyed by
+   :func:`draw_key` (the parts of the exercise that shape the draw, reference.py, the grader's
+   strategies.py and properties.py, and Hypothesis's major version). A stale one (its key differs)
+   is ignored, and ``validate`` reports it. So even the first check on a new machine replays;
+2. the learner's cache, ``<home>/cache/inputs/``, written after a passing Hypothesis run and keyed
+   by the whole exercise file, reference.py, the grader's sources and the exact versions;
+3. neither: Hypothesis runs (and a pass fills the cache).
+
+Every recording holds inputs drawn by the exercise's current strategy, from its declared domain,
+so a replayed input on which a learner's function fails is a real failure even when a fresh run
+(another Hypothesis version) would not meet it: the verdict then shows that input.
 """
 
 from __future__ import annotations
@@ -17,22 +29,133 @@ from __future__ import annotations
 import hashlib
 import json
 import os
+import sys
 import tempfile
+from functools import lru_cache
 from pathlib import Path
 from typing import Any
 
 from slamcourse import __version__
 from slamcourse.course.model import ExerciseSpec
 
+SHIPPED_FORMAT = 1
+
+
+@lru_cache(maxsize=1)
+def _grader_digest() -> str:
+    """The grader's own code that decides how inputs are drawn."""
+    from slamcourse.grading import properties, strategies
+
+    digest = hashlib.sha256()
+    for module in (strategies, properties):
+        digest.update(Path(str(module.__file__)).read_bytes())
+    return digest.hexdigest()
+
+
+@lru_cache(maxsize=1)
+def hypothesis_version() -> str:
+    """Hypothesis's version without importing it or importlib.metadata (together ~25 ms of a
+    check): the name of its ``.dist-info`` folder, first on ``sys.path`` as imports search."""
+    for entry in sys.path:
+        try:
+            names = os.listdir(entry or ".")
+        except OSError:
+            continue
+        for name in names:
+            if name.startswith("hypothesis-") and name.endswith(".dist-info"):
+                return name[len("hypothesis-") : -len(".dist-info")]
+    from importlib.metadata import version  # e.g. an egg or a source checkout
+
+    return version("hypothesis")
+
 
 def recording_key(spec: ExerciseSpec, seed: int, max_examples: int) -> str:
-    from importlib.metadata import version
-
+    """The name of the learner-cache recording (exact versions; any edit of the files)."""
     digest = hashlib.sha256()
     for part in (spec.path.read_bytes(), spec.reference_path.read_bytes()):
         digest.update(hashlib.sha256(part).digest())
-    digest.update(f"{__version__}|{version('hypothesis')}|{seed}|{max_examples}".encode())
+    digest.update(
+        f"{__version__}|{hypothesis_version()}|{seed}|{max_examples}|{_grader_digest()}".encode()
+    )
     return f"{spec.id.replace('/', '--')}-{digest.hexdigest()[:24]}"
+
+
+def draw_key(spec: ExerciseSpec, seed: int) -> str:
+    """The key of a shipped recording: a hash of exactly what determines the inputs drawn.
+
+    The exercise's id, signature, arguments, strategy, assume, examples and max_examples (not its
+    prose), its reference.py (which holds the reference and any strategy function), the grader's
+    strategies.py and properties.py, the seed, and Hypothesis's major version.
+    """
+    opts = spec.options
+    described = {
+        "id": spec.id,
+        "signature": list(opts.signature),
+        "arguments": [[a.name, a.dist, [_encode(v) for v in a.args]] for a in opts.arguments],
+        "strategy": opts.strategy,
+        "assume": list(opts.assume),
+        "examples": [_encode(e) for e in opts.examples],
+        "max_examples": opts.max_examples,
+        "seed": seed,
+        "reference": hashlib.sha256(spec.reference_path.read_bytes()).hexdigest(),
+        "grader": _grader_digest(),
+        "hypothesis": hypothesis_version().split(".")[0],
+    }
+    text = json.dumps(described, sort_keys=True, separators=(",", ":"), allow_nan=False)
+    return hashlib.sha256(text.encode()).hexdigest()
+
+
+def shipped_path(spec: ExerciseSpec) -> Path:
+    """``exercises/<chapter>/recordings/<slug>.json``."""
+    return spec.path.parent / "recordings" / f"{spec.path.stem}.json"
+
+
+def shipped_state(spec: ExerciseSpec, seed: int) -> str:
+    """``"ok"``, ``"missing"``, ``"stale"`` (another key) or ``"broken"`` (unreadable)."""
+    try:
+        data = json.loads(shipped_path(spec).read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        return "missing"
+    except (OSError, ValueError):
+        return "broken"
+    if not isinstance(data, dict) or not isinstance(data.get("inputs"), list):
+        return "broken"
+    return "ok" if data.get("key") == draw_key(spec, seed) else "stale"
+
+
+def load_shipped(spec: ExerciseSpec, seed: int) -> list[dict[str, Any]] | None:
+    """The course's recorded inputs for this exercise, or None (missing, stale or broken)."""
+    try:
+        data = json.loads(shipped_path(spec).read_text(encoding="utf-8"))
+        if data["key"] != draw_key(spec, seed):
+            return None
+        return [
+            {str(name): _decode(value) for name, value in item.items()} for item in data["inputs"]
+        ]
+    except (OSError, ValueError, KeyError, TypeError, AttributeError):
+        return None
+
+
+def write_shipped(spec: ExerciseSpec, seed: int, inputs: list[dict[str, Any]]) -> Path:
+    """Write the course's recording (one input per line, so a diff shows what changed)."""
+    path = shipped_path(spec)
+    lines = ",\n".join(  # keyword arguments as a plain object; their values tagged
+        "    " + json.dumps({k: _encode(v) for k, v in i.items()}, allow_nan=False) for i in inputs
+    )
+    head = {
+        "format": SHIPPED_FORMAT,
+        "exercise": spec.id,
+        "key": draw_key(spec, seed),
+        "hypothesis": hypothesis_version(),
+        "count": len(inputs),
+    }
+    text = json.dumps(head, indent=2)[:-2] + ',\n  "inputs": [\n' + lines + "\n  ]\n}\n"
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".rec-")
+    with os.fdopen(fd, "w", encoding="utf-8") as handle:
+        handle.write(text)
+    os.replace(tmp, path)
+    return path
 
 
 def _path(key: str) -> Path | None:
@@ -44,18 +167,25 @@ def _path(key: str) -> Path | None:
 
 def load(key: str) -> list[dict[str, Any]] | None:
     """The recorded inputs, or None when there is no (readable) recording."""
+    from slamcourse import cache
+
     path = _path(key)
     if path is None:
         return None
     try:
         data = json.loads(path.read_text(encoding="utf-8"))
-        return [_decode(item) for item in data["inputs"]]
+        inputs = [_decode(item) for item in data["inputs"]]
     except (OSError, ValueError, KeyError, TypeError):
         return None
+    cache.touch(path)
+    return inputs
 
 
 def save(key: str, inputs: list[dict[str, Any]]) -> None:
     """Record ``inputs`` atomically; a cache that cannot be written is simply skipped."""
+    from slamcourse import cache
+
+    cache.evict_if_due()
     path = _path(key)
     if path is None:
         return

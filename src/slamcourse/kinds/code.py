@@ -188,9 +188,17 @@ class CodeKind(Kind):
         *,
         require_isolation: bool = False,
         spawn: Any = None,
+        hidden_seed: int | None = None,
+        shrink: bool = True,
     ) -> Verdict:
         """Grade learner ``source`` in a fresh sandboxed worker: ``spawn()`` hands one out (the
-        engine's pool); without it one is spawned here."""
+        engine's pool); without it one is spawned here.
+
+        ``hidden_seed``: after the ordinary run passes, run as many more inputs drawn with this
+        secret seed (grading mode: a batch grader's hidden checks; learners cannot have met
+        these inputs before). ``shrink=False`` reports the first failing input unshrunk (same
+        status; the validator uses it for mutants).
+        """
         from slamcourse.answers.text import unreadable_at
         from slamcourse.errors import GraderError
         from slamcourse.sandbox import Worker
@@ -214,7 +222,14 @@ class CodeKind(Kind):
                 if not loaded.ok:
                     return _load_verdict(loaded, filename, opts)
                 return self._grade(
-                    spec, worker.call, None, filename, isolation=worker.isolation.level
+                    spec,
+                    worker.call,
+                    None,
+                    filename,
+                    isolation=worker.isolation.level,
+                    hidden_seed=hidden_seed,
+                    shrink=shrink,
+                    output_cut=loaded.output_cut,
                 )
         except GraderError as exc:  # the grader's fault, said as such; no attempt is counted
             return Verdict("error", 0.0, f"Not graded (a problem on the grader's side): {exc}")
@@ -228,6 +243,9 @@ class CodeKind(Kind):
         *,
         isolation: str,
         use_recording: bool = True,
+        hidden_seed: int | None = None,
+        shrink: bool = True,
+        output_cut: bool = False,
     ) -> Verdict:
         from slamcourse.grading import replay as recording
         from slamcourse.grading.properties import (
@@ -241,42 +259,85 @@ class CodeKind(Kind):
         opts: CodeOptions = spec.options
         ref = reference.function(spec, spec.reference or "", spec.reference_line)
         seed = exercise_seed(spec.id)
-        key = recording.recording_key(spec, seed, opts.max_examples)
-        inputs = recording.load(key) if use_recording else None
-        outcome = None
+        cut = [output_cut]
+
+        def watched(args: Any) -> Any:
+            result = call(args)
+            if result.output_cut:
+                cut[0] = True
+            return result
+
+        def property_run(run_seed: int, examples: Any) -> Any:
+            return run(
+                strategy=strategy if strategy is not None else self.strategy(spec),
+                examples=examples,
+                signature=opts.signature,
+                returns=opts.returns,
+                tolerance=opts.tolerance,
+                reference=ref,
+                call=watched,
+                max_examples=opts.max_examples,
+                seed=run_seed,
+                shrink=shrink,
+            )
+
+        # recorded inputs: the course's shipped recording, else this learner's cache
+        inputs, cache_key = None, None
+        if use_recording:
+            inputs = recording.load_shipped(spec, seed)
+            if inputs is None:
+                cache_key = recording.recording_key(spec, seed, opts.max_examples)
+                inputs = recording.load(cache_key)
+        outcome, replayed_failure = None, None
         if inputs:
-            outcome = replay_inputs(
+            replayed = replay_inputs(
                 inputs=inputs,
                 signature=opts.signature,
                 returns=opts.returns,
                 tolerance=opts.tolerance,
                 reference=ref,
-                call=call,
+                call=watched,
                 seed=seed,
             )
-        if outcome is None:
-            outcome = run(
-                strategy=strategy if strategy is not None else self.strategy(spec),
-                examples=opts.examples,
-                signature=opts.signature,
-                returns=opts.returns,
-                tolerance=opts.tolerance,
-                reference=ref,
-                call=call,
-                max_examples=opts.max_examples,
-                seed=seed,
-            )
-            if outcome.passed and use_recording:
-                recording.save(key, outcome.drawn)
+            if replayed is not None:
+                fatal = replayed.failure is not None and replayed.failure.kind not in (
+                    "mismatch",
+                    "raised",
+                )
+                if replayed.passed or fatal or not shrink:
+                    outcome = replayed
+                else:
+                    replayed_failure = replayed
+        if outcome is None:  # Hypothesis decides (and shrinks a failure)
+            outcome = property_run(seed, opts.examples)
+            if outcome.passed and replayed_failure is not None:
+                # a recorded input of this exercise's domain that this Hypothesis version did
+                # not draw: still a real failure, reported as found
+                outcome = replayed_failure
+            elif outcome.passed and cache_key is not None:
+                recording.save(cache_key, outcome.drawn)
         details: dict[str, Any] = {
             "examples": outcome.examples,
             "seed": outcome.seed,
             "isolation": isolation,
         }
+        hidden = False
+        if outcome.passed and hidden_seed is not None:
+            extra = property_run(hidden_seed, ())
+            details["hidden_examples"] = extra.examples
+            if not extra.passed:
+                hidden = True
+                details["hidden"] = True
+                outcome = extra
+        note = ""
+        if cut[0]:
+            details["output_cut"] = True
+            note = "\n\nYour code printed a lot: output beyond the first 1 MiB per stream was cut."
         failure = outcome.failure
         if failure is None:
+            total = outcome.examples + details.get("hidden_examples", 0)
             return Verdict.ok(
-                f"All {outcome.examples} test inputs passed, edge cases included.", **details
+                f"All {total} test inputs passed, edge cases included.{note}", **details
             )
         from slamcourse.grading.returns import show, to_plain
 
@@ -296,13 +357,19 @@ class CodeKind(Kind):
                 "timeout",
                 0.0,
                 f"{call_text} did not finish in time ({failure.message})."
-                " Look for a loop that never ends.",
+                f" Look for a loop that never ends.{note}",
                 details=details,
             )
         if failure.kind in ("crashed", "protocol_error"):
+            from slamcourse.sandbox.runner import FLOOD_MESSAGE
+
+            advice = (
+                "Print less."
+                if failure.message.startswith(FLOOD_MESSAGE)
+                else "Do not exit or write to the grader's channels; return the value."
+            )
             return Verdict.wrong(
-                f"{call_text} stopped the grader's worker: {failure.message}. "
-                "Do not exit or write to the grader's channels; return the value.",
+                f"{call_text} stopped the grader's worker: {failure.message}. {advice}{note}",
                 **details,
             )
         if failure.kind == "raised":
@@ -317,10 +384,15 @@ class CodeKind(Kind):
                 f"- got `{show(failure.got)}`\n\n{_sentence(failure.message)}"
             )
         tried = f"{outcome.examples} test input{'s' if outcome.examples != 1 else ''}"
-        if any(failure.kwargs == ex for ex in opts.examples):
+        if hidden:
+            text += f"\n\nFound by the hidden checks ({tried} run)."
+        elif any(failure.kwargs == ex for ex in opts.examples):
             text += f"\n\nThis is one of the exercise's fixed edge cases ({tried} run)."
+        elif outcome.replayed or not shrink:
+            text += f"\n\nThe first failing input found ({tried} run)."
         else:
             text += f"\n\nThe grader shrank the failure to this small input ({tried} run)."
+        text += note
         candidates = [
             (m.id, reference.function(spec, m.function or "", m.line)) for m in spec.misconceptions
         ]
@@ -332,7 +404,7 @@ class CodeKind(Kind):
                 returns=opts.returns,
                 tolerance=opts.tolerance,
                 reference=ref,
-                call=call,
+                call=watched,
             )
         passed = [
             (ex, ref(**copy.deepcopy(ex)))
@@ -350,27 +422,15 @@ class CodeKind(Kind):
 
     # ------------------------------------------------------------------ validation
     def self_test(self, spec: ExerciseSpec, variant: Variant) -> list[Problem]:
+        """Solution passes, starter fails, every mutant fails, every correct variant passes
+        (each through the real sandbox, a fresh worker each), every misconception fails and is
+        recognised as itself."""
         from slamcourse.grading.properties import TrustedCallee
 
-        opts: CodeOptions = spec.options
         problems: list[Problem] = []
         if variant.seed != 0:
             return problems  # Hypothesis covers the inputs; one run is enough
-        for label, path, want_pass in (
-            ("solution", opts.solution, True),
-            ("starter", opts.starter, False),
-        ):
-            verdict = self.check_source(spec, read_course_file(path, spec.course_root), path.name)
-            if verdict.passed != want_pass:
-                problems.append(
-                    problem(
-                        spec,
-                        spec.line,
-                        f"the {label} {path.name} "
-                        f"{'fails' if want_pass else 'passes'}: "
-                        f"{verdict.feedback.splitlines()[0]}",
-                    )
-                )
+        problems += self.check_submissions(spec)
         strategy = self.strategy(spec)
         for m in spec.misconceptions:
             fn = reference.function(spec, m.function or "", m.line)
@@ -401,6 +461,122 @@ class CodeKind(Kind):
                     )
                 )
         return problems
+
+    def check_submissions(self, spec: ExerciseSpec, *, jobs: int = 2) -> list[Problem]:
+        """Grade the solution, the starter, the mutants and the correct variants exactly as a
+        learner's files (the solution first, alone: its run fills the recording the others
+        replay; then the rest, ``jobs`` at a time)."""
+        from concurrent.futures import ThreadPoolExecutor
+
+        from slamcourse.course.loader import relpath
+
+        opts: CodeOptions = spec.options
+        mutants, variants = submission_files(spec)
+        problems: list[Problem] = []
+        runs: list[tuple[str, Path, bool, str]] = [
+            ("starter", opts.starter, False, ""),
+        ]
+        for kind_, paths, want_pass in (("mutant", mutants, False), ("variant", variants, True)):
+            for path in paths:
+                label = _first_line_label(path, SUBMISSION_TAGS[kind_])
+                if label is None:
+                    problems.append(
+                        Problem(
+                            relpath(path, spec.course_root),
+                            1,
+                            f"the first line of a {kind_} must be "
+                            f"'# {SUBMISSION_TAGS[kind_]}: <{SUBMISSION_HELP[kind_]}>'",
+                        )
+                    )
+                runs.append((kind_, path, want_pass, label or ""))
+
+        def grade(path: Path, want_pass: bool) -> Verdict:
+            source = read_course_file(path, spec.course_root)
+            return self.check_source(spec, source, path.name, shrink=want_pass)
+
+        solution = grade(opts.solution, True)
+        if not solution.passed:
+            problems.append(
+                problem(
+                    spec,
+                    spec.line,
+                    f"the solution {opts.solution.name} fails: {_first(solution.feedback)}",
+                )
+            )
+        with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
+            verdicts = list(pool.map(lambda r: grade(r[1], r[2]), runs))
+        for (kind_, path, _want, label), verdict in zip(runs, verdicts, strict=True):
+            if kind_ == "starter":
+                if verdict.passed:
+                    problems.append(
+                        problem(
+                            spec,
+                            spec.line,
+                            f"the starter {path.name} passes: {_first(verdict.feedback)}",
+                        )
+                    )
+                continue
+            where = relpath(path, spec.course_root)
+            if kind_ == "mutant" and verdict.passed:
+                problems.append(
+                    Problem(
+                        where,
+                        1,
+                        f"this mutant passes every test input ({label or 'no mistake named'}); "
+                        "add an edge example to the exercise's 'examples' where it goes wrong",
+                    )
+                )
+            elif kind_ == "mutant" and verdict.status in ("invalid", "error"):
+                problems.append(
+                    Problem(
+                        where,
+                        1,
+                        f"this mutant is not graded as a wrong answer but as "
+                        f"{verdict.status}: {_first(verdict.feedback)}",
+                    )
+                )
+            elif kind_ == "variant" and not verdict.passed:
+                problems.append(
+                    Problem(
+                        where,
+                        1,
+                        f"this correct variant ({label or 'no method named'}) fails: "
+                        f"{_first(verdict.feedback)}",
+                    )
+                )
+        return problems
+
+
+SUBMISSION_TAGS = {"mutant": "mistake", "variant": "method"}
+SUBMISSION_HELP = {"mutant": "the plausible mistake", "variant": "the method"}
+
+
+def submission_files(spec: ExerciseSpec) -> tuple[list[Path], list[Path]]:
+    """The exercise's mutants (``mutants/<slug>/*.py``) and correct variants
+    (``variants/<slug>/*.py``), next to its YAML file, sorted by name."""
+    folder, slug = spec.path.parent, spec.path.stem
+    return (
+        sorted((folder / "mutants" / slug).glob("*.py")),
+        sorted((folder / "variants" / slug).glob("*.py")),
+    )
+
+
+def _first_line_label(path: Path, tag: str) -> str | None:
+    """What follows ``# <tag>:`` on the file's first line, or None."""
+    try:
+        with path.open(encoding="utf-8", errors="replace") as handle:
+            first = handle.readline().strip()
+    except OSError:
+        return None
+    prefix = f"# {tag}:"
+    if not first.startswith(prefix) or not first[len(prefix) :].strip():
+        return None
+    return first[len(prefix) :].strip()
+
+
+def _first(feedback: str) -> str:
+    lines = feedback.strip().splitlines()
+    return lines[0] if lines else ""
 
 
 def _load_verdict(loaded: Any, filename: str, opts: CodeOptions) -> Verdict:

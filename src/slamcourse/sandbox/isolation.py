@@ -59,6 +59,10 @@ class Limits:
     - ``file_bytes``: ``RLIMIT_FSIZE``, largest file the learner can write.
     - ``open_files``: ``RLIMIT_NOFILE``.
     - ``output_bytes``: stdout and stderr kept per request and stream; the rest is discarded.
+    - ``muted_after``: characters per stream the worker passes on over its whole life; later
+      output is counted but never written (so printing in a loop costs nothing).
+    - ``flood_bytes``: bytes of stdout and stderr together the parent reads from one worker
+      before it kills it (only output written around the muted streams gets that far).
     - ``start_seconds``: wall time for the worker to start (interpreter + numpy import).
     - ``frame_bytes``: largest protocol frame (one reply line) accepted from the worker.
     - ``tmp_bytes``: size of the private writable ``/tmp`` under namespaces.
@@ -72,6 +76,8 @@ class Limits:
     file_bytes: int = 16 << 20
     open_files: int = 64
     output_bytes: int = 64 << 10
+    muted_after: int = 1 << 20
+    flood_bytes: int = 8 << 20
     start_seconds: float = 20.0
     frame_bytes: int = 1 << 20
     tmp_bytes: int = 16 << 20

@@ -71,6 +71,7 @@ LoadStatus = Literal[
 ]
 CallStatus = Literal["ok", "raised", "timeout", "crashed", "protocol_error"]
 Fatal = Literal["timeout", "crashed", "protocol_error"]
+FLOOD_MESSAGE = "your code printed more than"  # how a worker killed for its output is described
 _POLL = 0.05  # seconds between checks that the worker is still alive while waiting
 _LOAD_STATUSES = frozenset(
     {"ok", "syntax_error", "import_error", "missing_function", "not_callable", "signature"}
@@ -99,6 +100,7 @@ class LoadResult:
     stdout: str = ""
     stderr: str = ""
     exit_code: int | None = None
+    output_cut: bool = False
 
     @property
     def ok(self) -> bool:
@@ -114,7 +116,9 @@ class CallResult:
     - ``raised``: ``error`` is ``"TypeName: message"``, ``frames`` the learner's own frames;
     - ``timeout`` / ``crashed`` / ``protocol_error``: ``error`` says what happened.
 
-    ``stdout`` and ``stderr`` hold what the learner printed during the call (cleaned, capped).
+    ``stdout`` and ``stderr`` hold what the learner printed during the call (cleaned, capped);
+    ``output_cut`` is True once any of the worker's output was discarded (see
+    :class:`~slamcourse.sandbox.isolation.Limits`).
     """
 
     status: CallStatus
@@ -125,6 +129,7 @@ class CallResult:
     stderr: str = ""
     seconds: float = 0.0
     exit_code: int | None = None
+    output_cut: bool = False
 
     @property
     def ok(self) -> bool:
@@ -142,6 +147,7 @@ class _Outcome:
     stderr: str = ""
     seconds: float = 0.0
     exit_code: int | None = None
+    output_cut: bool = False
 
 
 class _Capture:
@@ -151,8 +157,10 @@ class _Capture:
         self.limit = limit
         self.data = bytearray()
         self.dropped = 0
+        self.seen = 0
 
     def add(self, chunk: bytes) -> None:
+        self.seen += len(chunk)
         room = self.limit - len(self.data)
         if room > 0:
             self.data += chunk[:room]
@@ -227,6 +235,8 @@ class Worker:
         self._dead: tuple[Fatal, str, int | None] | None = None  # status, message, exit code
         self._budget = limits.total_seconds
         self._buffer = bytearray()
+        self._output_seen = 0  # bytes of stdout + stderr read from this worker so far
+        self._output_cut = False
         self._req_w = -1
         self._resp_r = -1
         self._out_r = -1
@@ -283,6 +293,7 @@ class Worker:
                 f"nofile={limits.open_files}",
                 f"nproc={limits.processes}",
                 f"frame={limits.frame_bytes}",
+                f"out={limits.muted_after}",
                 "cg=" + ",".join(str(fd) for fd in cg_fds),
             ]
             python = os.path.abspath(sys.executable)
@@ -366,6 +377,7 @@ class Worker:
                     stdout=out.stdout,
                     stderr=out.stderr,
                     exit_code=out.exit_code,
+                    output_cut=out.output_cut,
                 )
             )
         assert out.frame is not None
@@ -397,6 +409,7 @@ class Worker:
                 stderr=out.stderr,
                 seconds=out.seconds,
                 exit_code=out.exit_code,
+                output_cut=out.output_cut,
             )
         assert out.frame is not None
         try:
@@ -409,6 +422,7 @@ class Worker:
                 stdout=out.stdout,
                 stderr=out.stderr,
                 seconds=out.seconds,
+                output_cut=out.output_cut,
             )
 
     def close(self) -> None:
@@ -443,6 +457,7 @@ class Worker:
             exit_code=code,
             stdout=out.stdout if out else "",
             stderr=out.stderr if out else "",
+            output_cut=out.output_cut if out else False,
         )
 
     def _load_result(self, frame: dict[str, Any], out: _Outcome) -> LoadResult:
@@ -458,6 +473,7 @@ class Worker:
             found=names_field(frame, "found"),
             stdout=out.stdout,
             stderr=out.stderr,
+            output_cut=self._note_dropped(frame, out),
         )
 
     def _call_result(self, frame: dict[str, Any], out: _Outcome) -> CallResult:
@@ -466,6 +482,7 @@ class Worker:
             "stdout": out.stdout,
             "stderr": out.stderr,
             "seconds": out.seconds,
+            "output_cut": self._note_dropped(frame, out),
         }
         if status == "ok":
             if "value" not in frame:
@@ -485,6 +502,13 @@ class Worker:
                 **common,
             )
         raise ProtocolViolation(f"unexpected call status {status!r}")
+
+    def _note_dropped(self, frame: dict[str, Any], out: _Outcome) -> bool:
+        """True once any output was discarded: muted by the worker (its ``dropped`` count, a
+        courtesy: informational only) or dropped by this side's per-request capture."""
+        if (int_or_none(frame, "dropped") or 0) > 0 or out.output_cut:
+            self._output_cut = True
+        return self._output_cut
 
     # -- transport ------------------------------------------------------------------------------
 
@@ -545,8 +569,23 @@ class Worker:
             self._drain(out_cap, err_cap)
             elapsed = time.monotonic() - start
             self._budget -= elapsed
+            self._output_seen += out_cap.seen + err_cap.seen
+            cut = bool(out_cap.dropped or err_cap.dropped or self._output_cut)
+            self._output_cut = cut
             return _Outcome(
-                status, frame, message, out_cap.text(), err_cap.text(), elapsed, exit_code
+                status, frame, message, out_cap.text(), err_cap.text(), elapsed, exit_code, cut
+            )
+
+        def flooded() -> bool:
+            return self._output_seen + out_cap.seen + err_cap.seen > limits.flood_bytes
+
+        def stop_flood() -> _Outcome:
+            self._res.kill()
+            self._output_cut = True
+            return finish(
+                "crashed",
+                f"{FLOOD_MESSAGE} {limits.flood_bytes >> 20} MiB of output, so it was stopped; "
+                "print less (not on every call or in a loop)",
             )
 
         def timed_out() -> _Outcome:
@@ -639,6 +678,8 @@ class Worker:
                 _read_into(self._out_r, out_cap)
             if self._err_r in readable:
                 _read_into(self._err_r, err_cap)
+            if (self._out_r in readable or self._err_r in readable) and flooded():
+                return stop_flood()
             if self._resp_r in readable:
                 try:
                     chunk = os.read(self._resp_r, 1 << 16)

@@ -9,7 +9,7 @@ their code has run.
 Invocation (all values are decimal integers)::
 
     python -I -B worker.py req=FD resp=FD as=BYTES cpu=SECONDS fsize=BYTES nofile=N nproc=N \
-        frame=BYTES [cg=FD,FD,...]
+        frame=BYTES [out=CHARS] [cg=FD,FD,...]
 
 Order of events:
 
@@ -19,6 +19,12 @@ Order of events:
 3. answer requests read from ``req`` (one JSON object per line) with one JSON line each on
    ``resp``: ``load`` (source text, file name, function name, expected parameters) and ``call``
    (arguments). End of file on ``req`` means "exit now".
+
+Learner output is muted past ``out`` characters per stream (over the worker's whole life):
+``sys.stdout`` and ``sys.stderr`` become writers that keep the first ``out`` characters and
+count the rest, so a ``print`` in a loop costs almost nothing once the budget is spent. Every
+reply carries ``dropped``, the characters discarded so far. (Output written around these
+writers, e.g. with ``os.write(1, ...)``, reaches the parent, which kills a worker that floods.)
 
 Return values are converted to plain JSON data here, with exact type checks only (``type(x) is
 float``), so no method of a learner object is called while encoding; anything else becomes an
@@ -83,6 +89,7 @@ _JOINED, _REFUSED = _contain(_CFG)
 
 import builtins  # noqa: E402
 import contextlib  # noqa: E402
+import io  # noqa: E402
 import json  # noqa: E402
 import types  # noqa: E402
 from typing import Any  # noqa: E402
@@ -137,6 +144,46 @@ if _np is not None:
 else:
     _NDARRAY = None
     _NP_SCALARS = frozenset()
+
+
+class _MutedStream(io.TextIOBase):
+    """A text stream that passes the first ``budget`` characters to ``real``, then only
+    counts (``dropped``). stdout and stderr each get one; ``print`` works unchanged."""
+
+    def __init__(self, real: Any, budget: int) -> None:
+        self._real = real
+        self._left = budget
+        self.dropped = 0
+
+    def write(self, text: str) -> int:
+        if not _isinstance(text, str):  # as io.TextIOWrapper.write
+            raise TypeError(f"write() argument must be str, not {_type_name(type(text))}")
+        size = _len(text)
+        if self._left > 0:
+            part = text[: self._left]
+            self._left -= _len(part)
+            self._real.write(part)
+            self.dropped += size - _len(part)
+        else:
+            self.dropped += size
+        return size
+
+    def flush(self) -> None:
+        self._real.flush()
+
+    def writable(self) -> bool:
+        return True
+
+    @property
+    def buffer(self) -> Any:  # bytes written here bypass the budget; the parent caps them
+        return self._real.buffer
+
+    def fileno(self) -> int:
+        return int(self._real.fileno())
+
+    @property
+    def encoding(self) -> str:  # type: ignore[override]
+        return str(self._real.encoding)
 
 
 def _restore_builtins() -> None:
@@ -232,6 +279,7 @@ class Session:
     def send(self, frame: dict[str, Any]) -> None:
         _flush_learner_output()
         _restore_builtins()
+        frame["dropped"] = _STDOUT.dropped + _STDERR.dropped
         data = (_ENCODER.encode(frame) + "\n").encode()
         if _len(data) > self.frame_limit:
             oversize = {"id": frame.get("id"), "status": "oversize", "size": _len(data)}
@@ -352,9 +400,17 @@ def _arity_problem(function: Any, count: int) -> list[str] | None:
 
 
 def _flush_learner_output() -> None:
-    for stream in (sys.stdout, sys.stderr):
+    for stream in (sys.stdout, sys.stderr, _STDOUT, _STDERR):
         with contextlib.suppress(BaseException):
             stream.flush()
+
+
+_BUDGET = int(_CFG.get("out") or 1 << 20)
+_STDOUT = _MutedStream(sys.stdout, _BUDGET)
+_STDERR = _MutedStream(sys.stderr, _BUDGET)
+sys.stdout, sys.stderr = _STDOUT, _STDERR
+setattr(sys, "__stdout__", _STDOUT)  # noqa: B010 (the name is Final for type checkers)
+setattr(sys, "__stderr__", _STDERR)  # noqa: B010
 
 
 def main() -> int:
