@@ -20,8 +20,8 @@ def test_a_special_case_is_not_blamed_on_a_misconception_it_does_not_share() -> 
     outcome = Outcome(failures=[Failure({"num_landmarks": 0}, 3, 0, "expected 3", "mismatch")])
     candidates = [("landmarks-only", landmarks_only)]
     assert matching_misconception(outcome, returns, TOL, candidates) == "landmarks-only"
-    passed = [({"num_landmarks": 5}, 13)]
-    assert matching_misconception(outcome, returns, TOL, candidates, passed=passed) is None
+    outcome.agreed.append(({"num_landmarks": 5}, 13))  # the learner was right for 5
+    assert matching_misconception(outcome, returns, TOL, candidates) is None
 
 
 def test_a_misconception_that_explains_every_input_is_named() -> None:
@@ -33,4 +33,4 @@ def test_a_misconception_that_explains_every_input_is_named() -> None:
         ]
     )
     candidates = [("landmarks-only", landmarks_only)]
-    assert matching_misconception(outcome, returns, TOL, candidates, passed=[]) == "landmarks-only"
+    assert matching_misconception(outcome, returns, TOL, candidates) == "landmarks-only"

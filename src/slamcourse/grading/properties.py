@@ -47,6 +47,9 @@ class Outcome:
     seed: int = 0
     drawn: list[dict[str, Any]] = field(default_factory=list)  # inputs, in the order tried
     replayed: bool = False
+    agreed: list[tuple[dict[str, Any], Any]] = field(default_factory=list)
+    """``(input, reference value)`` of explicit examples the callee got right (collected with
+    the failures): a misconception must be right there too to be named."""
 
     @property
     def passed(self) -> bool:
@@ -243,6 +246,8 @@ def collect_failures(
             continue
         if compare(returns, result.value, want, tolerance) is not None:
             outcome.failures.append(Failure(kwargs, want, result.value, "", "mismatch"))
+        else:
+            outcome.agreed.append((kwargs, want))
 
 
 def matching_misconception(
@@ -250,16 +255,14 @@ def matching_misconception(
     returns: Any,
     tolerance: Tolerance,
     candidates: Sequence[tuple[str, Callable[..., Any]]],
-    *,
-    passed: Sequence[tuple[dict[str, Any], Any]] = (),
 ) -> str | None:
     """The id of the first misconception that explains the learner's function.
 
     It must return what the learner returned on every recorded failing input (only inputs where
     the learner returned a value count), and it must also be right wherever the learner was
-    right: ``passed`` holds ``(input, reference value)`` pairs of edge examples the learner
-    passed. A solution that special-cases one input is then not blamed on a misconception that
-    goes wrong on inputs the solution gets right.
+    right: ``outcome.agreed`` holds the edge examples the learner got right (an input where the
+    learner's code raised is neither). A solution that special-cases one input is then not
+    blamed on a misconception that goes wrong on inputs the solution gets right.
     """
     observed = [f for f in outcome.failures if f.kind == "mismatch"]
     if not observed:
@@ -271,7 +274,7 @@ def matching_misconception(
                 for f in observed
             ) and all(
                 compare(returns, to_plain(fn(**copy.deepcopy(kwargs))), want, tolerance) is None
-                for kwargs, want in passed
+                for kwargs, want in outcome.agreed
             ):
                 return mid
         except Exception:  # a misconception undefined on this input does not match

@@ -7,7 +7,6 @@ trusted parent (:mod:`slamcourse.grading`).
 
 from __future__ import annotations
 
-import copy
 import re
 from dataclasses import dataclass
 from pathlib import Path
@@ -406,14 +405,7 @@ class CodeKind(Kind):
                 reference=ref,
                 call=watched,
             )
-        passed = [
-            (ex, ref(**copy.deepcopy(ex)))
-            for ex in opts.examples
-            if failure.kind == "mismatch" and not any(f.kwargs == ex for f in outcome.failures)
-        ]
-        found = matching_misconception(
-            outcome, opts.returns, opts.tolerance, candidates, passed=passed
-        )
+        found = matching_misconception(outcome, opts.returns, opts.tolerance, candidates)
         if found:
             m = next(m for m in spec.misconceptions if m.id == found)
             message = render(spec, m.message, Variant(0, {}))
