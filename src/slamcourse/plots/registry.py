@@ -74,7 +74,7 @@ BY_ID: dict[str, Plot] = {
 }
 
 BY_TAG: list[tuple[str, frozenset[str], Plot]] = [
-    ("observation", frozenset({"xr", "yr", "thr", "xj", "yj"}), _geometry),
+    ("observation-model", frozenset({"xr", "yr", "thr", "xj", "yj"}), _geometry),
     ("drift", frozenset({"bias", "steps"}), BY_ID["drift/systematic-drift"]),
     ("drift", frozenset({"sigma", "steps"}), BY_ID["drift/random-drift"]),
 ]
