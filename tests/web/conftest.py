@@ -96,6 +96,7 @@ def live(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Any]:
 
     tmp = tmp_path_factory.mktemp("live")
     with Engine.open(settings_for(tmp)) as eng, running(eng, token=TOKEN) as srv:
+        eng.start_workers()  # as `slamcourse serve` does: a warm sandbox worker
         srv.engine = eng  # type: ignore[attr-defined]
         yield srv
 
