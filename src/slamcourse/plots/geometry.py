@@ -11,7 +11,7 @@ import math
 from slamcourse.plots.svg import document, el, fmt, num, polyline, text
 
 W, H = 440.0, 380.0
-PAD = 50.0
+PAD = 60.0
 
 
 def wrap(angle: float) -> float:
@@ -25,9 +25,9 @@ def observation_geometry(xr: float, yr: float, thr: float, xj: float, yj: float)
     dx, dy = xj - xr, yj - yr
     r = math.hypot(dx, dy)
     phi = wrap(math.atan2(dy, dx) - thr)
-    span = max(abs(dx), abs(dy), 1.0) * 1.3
+    half = max(abs(dx), abs(dy), 1.0) * 0.5  # half the extent of the scene (m)
     cx, cy = (xr + xj) / 2, (yr + yj) / 2
-    scale = (min(W, H) - 2 * PAD) / (2 * span)
+    scale = (min(W, H) / 2 - PAD) / half
 
     def sx(x: float) -> float:
         return W / 2 + (x - cx) * scale
@@ -36,6 +36,7 @@ def observation_geometry(xr: float, yr: float, thr: float, xj: float, yj: float)
         return H / 2 - (y - cy) * scale
 
     rx, ry = sx(xr), sy(yr)
+    bearing = math.atan2(dy, dx)  # world angle of the robot → landmark line
     size = 14.0
     tri = [
         (rx + size * math.cos(thr), ry - size * math.sin(thr)),
@@ -58,12 +59,13 @@ def observation_geometry(xr: float, yr: float, thr: float, xj: float, yj: float)
         text(rx + (head + 6) * math.cos(thr), ry - (head + 6) * math.sin(thr), "heading θ",
              fill="#555"),
         polyline([(rx, ry), (sx(xj), sy(yj))], stroke="#1f6fb2", stroke_width=2.0),
-        text((rx + sx(xj)) / 2 + 8, (ry + sy(yj)) / 2 - 8, f"r = {num(r)} m", fill="#1f6fb2",
-             font_weight="bold"),
+        text((rx + sx(xj)) / 2 + 10 * math.sin(bearing), (ry + sy(yj)) / 2 + 10 * math.cos(bearing),
+             f"r = {num(r)} m", fill="#1f6fb2", font_weight="bold"),
         el("path", d=f"M{fmt(a0[0])},{fmt(a0[1])} A{fmt(arc_r)},{fmt(arc_r)} 0 {large} {sweep} "
            f"{fmt(a1[0])},{fmt(a1[1])}", fill="none", stroke="#b3541e", stroke_width=2.0),
-        text(rx + (arc_r + 14) * math.cos(mid), ry - (arc_r + 14) * math.sin(mid),
-             f"φ = {num(phi)} rad", fill="#b3541e", font_weight="bold"),
+        text(rx + (arc_r + 16) * math.cos(mid), ry - (arc_r + 16) * math.sin(mid),
+             f"φ = {num(phi)} rad", fill="#b3541e", font_weight="bold",
+             text_anchor="start" if math.cos(mid) >= 0 else "end"),
         el("polygon", points=" ".join(f"{fmt(x)},{fmt(y)}" for x, y in tri), fill="#222"),
         text(rx - 10, ry + 24, f"robot ({num(xr)}, {num(yr)})", fill="#222"),
         el("rect", x=sx(xj) - 6, y=sy(yj) - 6, width=12.0, height=12.0, fill="#2e7d32",

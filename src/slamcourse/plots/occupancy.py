@@ -78,7 +78,7 @@ def occupancy_grid(
 ) -> str:
     """The grid after the beams, each cell shaded by p and labelled with its log-odds."""
     grid = update_grid(cols, rows, robot, hits, l_occ, l_free)
-    w, h = cols * CELL + 40, rows * CELL + 70
+    w, h = max(cols * CELL + 40, 560.0), rows * CELL + 70
     body = [text(20, 20, f"log-odds after {len(hits)} beams (l_occ = {num(l_occ)}, "
                  f"l_free = {num(l_free)})", fill="#222")]
     hitset = {tuple(hh) for hh in hits}
@@ -111,7 +111,7 @@ def occupancy_ray(
         for i, v in enumerate(before)
     ]
     n = len(before)
-    w, h = n * CELL + 120, 2 * CELL + 70
+    w, h = max(n * CELL + 120, 560.0), 2 * CELL + 70
     body = [text(20, 20, f"one beam hitting cell {hit_index}", fill="#222")]
     for row, (label, values) in enumerate((("before", before), ("after", after))):
         y = 34 + row * (CELL + 12)
