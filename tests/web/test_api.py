@@ -68,7 +68,9 @@ def test_cross_site_post_is_refused(client: Any) -> None:
     )
     assert resp.status_code == 403
     resp = client.post(
-        "/api/answer/basics/distance", json={"answer": "5"}, headers={"Sec-Fetch-Site": "cross-site"}
+        "/api/answer/basics/distance",
+        json={"answer": "5"},
+        headers={"Sec-Fetch-Site": "cross-site"},
     )
     assert resp.status_code == 403
     # a form post (no JSON) is what a cross-site page could send without a preflight
@@ -162,8 +164,17 @@ def test_code_check_shows_counterexample(client: Any, engine: Engine) -> None:
 def test_chapter_page_renders_every_form(client: Any) -> None:
     login(client)
     html = client.get("/chapter/basics").get_data(as_text=True)
-    for form in ("number", "vector", "matrix", "expression", "choice", "multi", "order", "line",
-                 "code"):
+    for form in (
+        "number",
+        "vector",
+        "matrix",
+        "expression",
+        "choice",
+        "multi",
+        "order",
+        "line",
+        "code",
+    ):
         assert f'data-form="{form}"' in html, form
     assert 'class="math inline"' in html
     assert html.count('role="status"') == 11  # one live region per exercise

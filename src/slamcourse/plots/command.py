@@ -41,4 +41,3 @@ def plot_command(
         raise UsageError(f"cannot write {path}: {exc.strerror or exc}") from exc
     say(f"Wrote the picture of {exercise_id} (your variant) to {path}")
     return 0
-

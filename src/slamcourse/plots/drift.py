@@ -116,8 +116,14 @@ def drift_trajectories(
         el("rect", x=LEFT, y=TOP, width=pw, height=ph, fill="#fbfbf8", stroke="#999"),
         text(LEFT, 20, "Plan view (sideways axis stretched to show the drift)", fill="#333"),
         text(LEFT + pw / 2, H - 12, "forward (m)", text_anchor="middle", fill="#333"),
-        text(14, TOP + ph / 2, "sideways (m)", text_anchor="middle", fill="#333",
-             transform=f"rotate(-90 14 {fmt(TOP + ph / 2)})"),
+        text(
+            14,
+            TOP + ph / 2,
+            "sideways (m)",
+            text_anchor="middle",
+            fill="#333",
+            transform=f"rotate(-90 14 {fmt(TOP + ph / 2)})",
+        ),
         text(LEFT, TOP + ph + 16, num(xmin, 4), text_anchor="middle", fill="#333"),
         text(LEFT + pw, TOP + ph + 16, num(xmax, 4), text_anchor="end", fill="#333"),
         text(LEFT - 4, TOP + 4, num(ymax), text_anchor="end", fill="#333"),
@@ -129,8 +135,12 @@ def drift_trajectories(
         every = _every(len(pts))
         shown = pts[::every] + ([pts[-1]] if (len(pts) - 1) % every else [])
         body.append(
-            polyline([(sx(x), sy(y)) for x, y in shown], stroke=colour, stroke_width=2.0,
-                     stroke_dasharray=dash)
+            polyline(
+                [(sx(x), sy(y)) for x, y in shown],
+                stroke=colour,
+                stroke_width=2.0,
+                stroke_dasharray=dash,
+            )
         )
         ex, ey = pts[-1]
         body.append(el("circle", cx=sx(ex), cy=sy(ey), r=4.0, fill=colour))
@@ -138,8 +148,16 @@ def drift_trajectories(
         if name.startswith("random") and sigma is not None:
             r = sigma * math.sqrt(steps)
             body.append(
-                el("ellipse", cx=sx(ex), cy=sy(ey), rx=r / span_x * pw,
-                   ry=r / (ymax - ymin) * ph, fill="none", stroke=colour, stroke_dasharray="1 2")
+                el(
+                    "ellipse",
+                    cx=sx(ex),
+                    cy=sy(ey),
+                    rx=r / span_x * pw,
+                    ry=r / (ymax - ymin) * ph,
+                    fill="none",
+                    stroke=colour,
+                    stroke_dasharray="1 2",
+                )
             )
     if believed_end is not None:
         y0 = sy(0)
@@ -147,15 +165,26 @@ def drift_trajectories(
             el("circle", cx=sx(length), cy=y0, r=5.0, fill="#222"),
             el("rect", x=sx(believed_end) - 5, y=y0 - 5, width=10.0, height=10.0, fill="#7a3fa0"),
             text(sx(length), y0 + 20, "true end", text_anchor="end", fill="#222"),
-            text(sx(believed_end), y0 - 10, f"believed (+{num(bias * steps if bias else 0)} m)",
-                 text_anchor="end", fill="#7a3fa0"),
+            text(
+                sx(believed_end),
+                y0 - 10,
+                f"believed (+{num(bias * steps if bias else 0)} m)",
+                text_anchor="end",
+                fill="#7a3fa0",
+            ),
         ]
         legend.append(("systematic: believed end (square)", "#7a3fa0", ""))
     lx = LEFT + 8
     for i, (name, colour, dash) in enumerate(legend):
         ly = TOP + 14 + 16 * i
-        body.append(polyline([(lx, ly - 4), (lx + 24, ly - 4)], stroke=colour, stroke_width=2.0,
-                             stroke_dasharray=dash or None))
+        body.append(
+            polyline(
+                [(lx, ly - 4), (lx + 24, ly - 4)],
+                stroke=colour,
+                stroke_width=2.0,
+                stroke_dasharray=dash or None,
+            )
+        )
         body.append(text(lx + 30, ly, name, fill="#222"))
     desc = (
         f"The robot intends to drive {num(length)} m straight ahead in {steps} steps of "

@@ -54,22 +54,53 @@ def observation_geometry(xr: float, yr: float, thr: float, xj: float, yj: float)
     mid = thr + phi / 2
     body = [
         el("rect", x=0.0, y=0.0, width=W, height=H, fill="#fbfbf8"),
-        polyline([(rx, ry), (rx + head * math.cos(thr), ry - head * math.sin(thr))],
-                 stroke="#555", stroke_dasharray="6 4", stroke_width=1.5),
-        text(rx + (head + 6) * math.cos(thr), ry - (head + 6) * math.sin(thr), "heading θ",
-             fill="#555"),
+        polyline(
+            [(rx, ry), (rx + head * math.cos(thr), ry - head * math.sin(thr))],
+            stroke="#555",
+            stroke_dasharray="6 4",
+            stroke_width=1.5,
+        ),
+        text(
+            rx + (head + 6) * math.cos(thr),
+            ry - (head + 6) * math.sin(thr),
+            "heading θ",
+            fill="#555",
+        ),
         polyline([(rx, ry), (sx(xj), sy(yj))], stroke="#1f6fb2", stroke_width=2.0),
-        text((rx + sx(xj)) / 2 + 10 * math.sin(bearing), (ry + sy(yj)) / 2 + 10 * math.cos(bearing),
-             f"r = {num(r)} m", fill="#1f6fb2", font_weight="bold"),
-        el("path", d=f"M{fmt(a0[0])},{fmt(a0[1])} A{fmt(arc_r)},{fmt(arc_r)} 0 {large} {sweep} "
-           f"{fmt(a1[0])},{fmt(a1[1])}", fill="none", stroke="#b3541e", stroke_width=2.0),
-        text(rx + (arc_r + 16) * math.cos(mid), ry - (arc_r + 16) * math.sin(mid),
-             f"φ = {num(phi)} rad", fill="#b3541e", font_weight="bold",
-             text_anchor="start" if math.cos(mid) >= 0 else "end"),
+        text(
+            (rx + sx(xj)) / 2 + 10 * math.sin(bearing),
+            (ry + sy(yj)) / 2 + 10 * math.cos(bearing),
+            f"r = {num(r)} m",
+            fill="#1f6fb2",
+            font_weight="bold",
+        ),
+        el(
+            "path",
+            d=f"M{fmt(a0[0])},{fmt(a0[1])} A{fmt(arc_r)},{fmt(arc_r)} 0 {large} {sweep} "
+            f"{fmt(a1[0])},{fmt(a1[1])}",
+            fill="none",
+            stroke="#b3541e",
+            stroke_width=2.0,
+        ),
+        text(
+            rx + (arc_r + 16) * math.cos(mid),
+            ry - (arc_r + 16) * math.sin(mid),
+            f"φ = {num(phi)} rad",
+            fill="#b3541e",
+            font_weight="bold",
+            text_anchor="start" if math.cos(mid) >= 0 else "end",
+        ),
         el("polygon", points=" ".join(f"{fmt(x)},{fmt(y)}" for x, y in tri), fill="#222"),
         text(rx - 10, ry + 24, f"robot ({num(xr)}, {num(yr)})", fill="#222"),
-        el("rect", x=sx(xj) - 6, y=sy(yj) - 6, width=12.0, height=12.0, fill="#2e7d32",
-           transform=f"rotate(45 {fmt(sx(xj))} {fmt(sy(yj))})"),
+        el(
+            "rect",
+            x=sx(xj) - 6,
+            y=sy(yj) - 6,
+            width=12.0,
+            height=12.0,
+            fill="#2e7d32",
+            transform=f"rotate(45 {fmt(sx(xj))} {fmt(sy(yj))})",
+        ),
         text(sx(xj) + 10, sy(yj) - 10, f"landmark ({num(xj)}, {num(yj)})", fill="#2e7d32"),
     ]
     desc = (

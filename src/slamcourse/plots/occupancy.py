@@ -41,8 +41,12 @@ def beam_cells(a: tuple[int, int], b: tuple[int, int]) -> list[tuple[int, int]]:
 
 
 def update_grid(
-    cols: int, rows: int, robot: tuple[int, int], hits: Sequence[tuple[int, int]],
-    l_occ: float, l_free: float,
+    cols: int,
+    rows: int,
+    robot: tuple[int, int],
+    hits: Sequence[tuple[int, int]],
+    l_occ: float,
+    l_free: float,
 ) -> list[list[float]]:
     """Log-odds grid (rows × cols, starting at 0) after one beam from ``robot`` to each hit."""
     grid = [[0.0] * cols for _ in range(rows)]
@@ -65,31 +69,75 @@ def _cell(x: float, y: float, value: float, *, hit: bool = False) -> list[str]:
     ink = "#fff" if probability(value) > 0.6 else "#111"
     out = [el("rect", x=x, y=y, width=CELL, height=CELL, fill=_shade(value), stroke="#888")]
     if hit:
-        out.append(el("rect", x=x + 2, y=y + 2, width=CELL - 4, height=CELL - 4, fill="none",
-                      stroke="#b3541e", stroke_width=2.0))
-    out.append(text(x + CELL / 2, y + CELL / 2 + 4, fmt(value) if value else "0",
-                    text_anchor="middle", fill=ink, font_size="10"))
+        out.append(
+            el(
+                "rect",
+                x=x + 2,
+                y=y + 2,
+                width=CELL - 4,
+                height=CELL - 4,
+                fill="none",
+                stroke="#b3541e",
+                stroke_width=2.0,
+            )
+        )
+    out.append(
+        text(
+            x + CELL / 2,
+            y + CELL / 2 + 4,
+            fmt(value) if value else "0",
+            text_anchor="middle",
+            fill=ink,
+            font_size="10",
+        )
+    )
     return out
 
 
 def occupancy_grid(
-    cols: int, rows: int, robot: tuple[int, int], hits: Sequence[tuple[int, int]],
-    l_occ: float, l_free: float,
+    cols: int,
+    rows: int,
+    robot: tuple[int, int],
+    hits: Sequence[tuple[int, int]],
+    l_occ: float,
+    l_free: float,
 ) -> str:
     """The grid after the beams, each cell shaded by p and labelled with its log-odds."""
     grid = update_grid(cols, rows, robot, hits, l_occ, l_free)
     w, h = max(cols * CELL + 40, 560.0), rows * CELL + 70
-    body = [text(20, 20, f"log-odds after {len(hits)} beams (l_occ = {num(l_occ)}, "
-                 f"l_free = {num(l_free)})", fill="#222")]
+    body = [
+        text(
+            20,
+            20,
+            f"log-odds after {len(hits)} beams (l_occ = {num(l_occ)}, l_free = {num(l_free)})",
+            fill="#222",
+        )
+    ]
     hitset = {tuple(hh) for hh in hits}
     for r in range(rows):
         for c in range(cols):
             body += _cell(20 + c * CELL, 30 + r * CELL, grid[r][c], hit=(c, r) in hitset)
     rc, rr = robot
-    body.append(el("circle", cx=20 + (rc + 0.5) * CELL, cy=30 + (rr + 0.5) * CELL,
-                   r=CELL / 3, fill="#1f6fb2", stroke="#fff", stroke_width=2.0))
-    body.append(text(20, h - 12, "dark = likely occupied, light = likely free; circle = robot; "
-                     "framed = hit", fill="#333", font_size="11"))
+    body.append(
+        el(
+            "circle",
+            cx=20 + (rc + 0.5) * CELL,
+            cy=30 + (rr + 0.5) * CELL,
+            r=CELL / 3,
+            fill="#1f6fb2",
+            stroke="#fff",
+            stroke_width=2.0,
+        )
+    )
+    body.append(
+        text(
+            20,
+            h - 12,
+            "dark = likely occupied, light = likely free; circle = robot; framed = hit",
+            fill="#333",
+            font_size="11",
+        )
+    )
     occupied = sum(1 for row in grid for v in row if v > 0)
     free = sum(1 for row in grid for v in row if v < 0)
     desc = (
@@ -101,9 +149,7 @@ def occupancy_grid(
     return document(w, h, "Occupancy grid after log-odds updates", desc, body)
 
 
-def occupancy_ray(
-    log_odds: Sequence[float], hit_index: int, l_occ: float, l_free: float
-) -> str:
+def occupancy_ray(log_odds: Sequence[float], hit_index: int, l_occ: float, l_free: float) -> str:
     """One beam along a row of cells: the log-odds before and after the update."""
     before = [float(v) for v in log_odds]
     after = [
@@ -118,8 +164,15 @@ def occupancy_ray(
         body.append(text(20, y + CELL / 2 + 4, label, fill="#222"))
         for i, v in enumerate(values):
             body += _cell(80 + i * CELL, y, v, hit=row == 1 and i == hit_index)
-    body.append(text(80, h - 6, "cells before the hit add l_free; the hit cell adds l_occ; "
-                     "cells past it are unchanged", fill="#333", font_size="11"))
+    body.append(
+        text(
+            80,
+            h - 6,
+            "cells before the hit add l_free; the hit cell adds l_occ; cells past it are unchanged",
+            fill="#333",
+            font_size="11",
+        )
+    )
     desc = (
         f"Log-odds before: {', '.join(num(v) for v in before)}. The beam crosses cells 0 to "
         f"{hit_index - 1} (each adds {num(l_free)}) and hits cell {hit_index} (adds {num(l_occ)}). "

@@ -41,8 +41,11 @@ def _star(params: Params) -> str:
 
 def _geometry(params: Params) -> str:
     return observation_geometry(
-        float(params["xr"]), float(params["yr"]), float(params["thr"]),
-        float(params["xj"]), float(params["yj"]),
+        float(params["xr"]),
+        float(params["yr"]),
+        float(params["thr"]),
+        float(params["xj"]),
+        float(params["yj"]),
     )
 
 

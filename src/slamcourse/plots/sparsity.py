@@ -50,24 +50,44 @@ def eliminate(
 
 
 def _panel(
-    x0: float, y0: float, n: int, cells: set[tuple[int, int]], fill: set[tuple[int, int]],
+    x0: float,
+    y0: float,
+    n: int,
+    cells: set[tuple[int, int]],
+    fill: set[tuple[int, int]],
     label: str,
 ) -> list[str]:
     size = min(CELL_MAX, PANEL / max(n, 1))
     out = [text(x0, y0 - 8, label, fill="#222", font_weight="bold")]
-    out.append(el("rect", x=x0, y=y0, width=size * n, height=size * n, fill="#fff",
-                  stroke="#888"))
+    out.append(el("rect", x=x0, y=y0, width=size * n, height=size * n, fill="#fff", stroke="#888"))
     for i, j in sorted(cells):
         x, y = x0 + j * size, y0 + i * size
         if (i, j) in fill:
-            out.append(el("rect", x=x + 1, y=y + 1, width=size - 2, height=size - 2,
-                          fill="#f3d9c4", stroke="#b3541e"))
-            out.append(el("path", d=f"M{fmt(x + 3)},{fmt(y + 3)}L{fmt(x + size - 3)},"
-                          f"{fmt(y + size - 3)}M{fmt(x + size - 3)},{fmt(y + 3)}L{fmt(x + 3)},"
-                          f"{fmt(y + size - 3)}", stroke="#b3541e", stroke_width=1.5))
+            out.append(
+                el(
+                    "rect",
+                    x=x + 1,
+                    y=y + 1,
+                    width=size - 2,
+                    height=size - 2,
+                    fill="#f3d9c4",
+                    stroke="#b3541e",
+                )
+            )
+            out.append(
+                el(
+                    "path",
+                    d=f"M{fmt(x + 3)},{fmt(y + 3)}L{fmt(x + size - 3)},"
+                    f"{fmt(y + size - 3)}M{fmt(x + size - 3)},{fmt(y + 3)}L{fmt(x + 3)},"
+                    f"{fmt(y + size - 3)}",
+                    stroke="#b3541e",
+                    stroke_width=1.5,
+                )
+            )
         else:
-            out.append(el("rect", x=x + 1, y=y + 1, width=size - 2, height=size - 2,
-                          fill="#1f4e79"))
+            out.append(
+                el("rect", x=x + 1, y=y + 1, width=size - 2, height=size - 2, fill="#1f4e79")
+            )
     return out
 
 
@@ -106,5 +126,6 @@ def information_sparsity(
         f"{', '.join(str(v) for v in order) or '(none)'} leaves {len(filled)} non-zeros, of which "
         f"{len(fill)} are fill-in."
     )
-    return document(w, h, "Sparsity of the information matrix before and after elimination",
-                    desc, body)
+    return document(
+        w, h, "Sparsity of the information matrix before and after elimination", desc, body
+    )

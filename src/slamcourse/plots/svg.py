@@ -51,9 +51,7 @@ def polyline(points: Iterable[tuple[float, float]], **kw: object) -> str:
     return el("polyline", points=pts, fill="none", **kw)
 
 
-def document(
-    width: float, height: float, title: str, desc: str, body: Sequence[str]
-) -> str:
+def document(width: float, height: float, title: str, desc: str, body: Sequence[str]) -> str:
     """A standalone ``<svg>`` element with its text alternative (also valid inline in HTML)."""
     n = next(_ids)
     tid, did = f"plot-title-{n}", f"plot-desc-{n}"
