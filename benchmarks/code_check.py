@@ -62,18 +62,17 @@ def main() -> None:
 
 def repeated(exercise: str, solution: Path, repeats: int) -> None:
     from slamcourse.engine import Engine
-    from slamcourse.grading.pool import WorkerPool
+    from slamcourse.settings import Settings
 
-    engine = Engine.open(with_progress=False)
-    engine.pool = WorkerPool()
-    engine.pool.warm()
+    engine = Engine.open(Settings.from_env(record=False), with_progress=False)
+    engine.start_workers()
     times = []
     try:
-        engine.check_code(exercise, solution, record=False)  # first check: imports, caches
+        engine.submit_code(exercise, path=solution)  # first check: imports, caches
         for _ in range(repeats):
             time.sleep(0.5)  # the learner edits; the spare worker finishes starting meanwhile
             start = time.perf_counter()
-            verdict = engine.check_code(exercise, solution, record=False)
+            verdict = engine.submit_code(exercise, path=solution).verdict
             times.append(time.perf_counter() - start)
             assert verdict.passed, verdict.feedback
     finally:

@@ -7,6 +7,8 @@ EXTRAS="[test]" source scripts/setup.sh
 
 echo "==> ruff"
 .venv/bin/ruff check src tests benchmarks
+echo "==> ruff format --check"
+.venv/bin/ruff format --check src tests benchmarks
 echo "==> mypy"
 .venv/bin/mypy
 echo "==> slamcourse validate (bundled course)"

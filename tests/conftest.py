@@ -7,6 +7,8 @@ from pathlib import Path
 
 import pytest
 
+from slamcourse.settings import activate_cache
+
 FIXTURE_COURSE = Path(__file__).parent / "fixtures" / "course"
 REPO = Path(__file__).resolve().parent.parent
 
@@ -18,6 +20,7 @@ def private_home(tmp_path_factory: pytest.TempPathFactory, monkeypatch: pytest.M
     monkeypatch.setenv("SLAMCOURSE_HOME", str(home))
     monkeypatch.delenv("SLAMCOURSE_COURSE", raising=False)
     monkeypatch.setenv("NO_COLOR", "1")
+    activate_cache(home / "cache")  # what Engine.open does: caches live in the learner's home
     return home
 
 

@@ -13,15 +13,15 @@ import json
 import os
 import sys
 from collections.abc import Callable, Sequence
+from pathlib import Path
 from typing import TYPE_CHECKING, Any, TextIO
 
 from slamcourse import __version__
 from slamcourse.errors import EXIT_USAGE, SlamcourseError, UsageError
 
 if TYPE_CHECKING:
-    from slamcourse.course.model import Variant
-    from slamcourse.engine import Engine
-    from slamcourse.verdict import Verdict
+    from slamcourse.engine import Engine, Prompt, Result
+    from slamcourse.settings import Settings
 
 COMMANDS = ":hint  :skip  :giveup  :quit"
 
@@ -86,19 +86,39 @@ VERDICT_STYLE = {
     "timeout": ("bold", "red"),
     "error": ("bold", "magenta"),
 }
+VERDICT_LABEL = {
+    "passed": "✓ passed",
+    "failed": "✗ not yet",
+    "invalid": "? unreadable",
+    "timeout": "⏱ timeout",
+    "error": "! grader error",
+}
 
 
-def print_verdict(out: Out, verdict: Verdict) -> None:
-    label = {
-        "passed": "✓ passed",
-        "failed": "✗ not yet",
-        "invalid": "? unreadable",
-        "timeout": "⏱ timeout",
-        "error": "! grader error",
-    }[verdict.status]
-    out.line(f"{out.style(label, *VERDICT_STYLE[verdict.status])}  {_math(verdict.feedback)}")
-    if verdict.status == "invalid":
-        out.line(out.style("  (no attempt counted)", "dim"))
+def print_result(
+    out: Out, result: Result, *, explanation: bool = True, interactive: bool = True
+) -> None:
+    """A result as the terminal shows it: the verdict line, feedback wrapped to the terminal,
+    then what the engine's rules add (practice note, nudge, explanation once passed)."""
+    verdict = result.verdict
+    out.line(out.style(VERDICT_LABEL[verdict.status], *VERDICT_STYLE[verdict.status]))
+    out.markdown(verdict.feedback)
+    if verdict.status in ("invalid", "error"):
+        out.line(out.style("(no attempt counted)", "dim"))
+    elif result.practice:
+        out.line(
+            out.style(
+                "(practice on the lesson's own numbers: graded, but your own variant is "
+                "what counts)",
+                "dim",
+            )
+        )
+    if result.nudge:
+        how = ":hint" if interactive else f"slamcourse hint {result.exercise_id}"
+        out.line(out.style(f"{result.nudge} Type `{how}`.", "dim"))
+    if explanation and result.explanation:
+        out.line(out.style("Explanation", "bold"))
+        out.markdown(result.explanation)
 
 
 # ------------------------------------------------------------------------------ helpers
@@ -115,16 +135,22 @@ def _math(text: str) -> str:
     return re.sub(r"\$([^$]+)\$", lambda m: latex_to_unicode(m.group(1)), text)
 
 
-def _engine(args: argparse.Namespace, *, with_progress: bool = True) -> Engine:
+def _settings(args: argparse.Namespace) -> Settings:
+    from slamcourse.settings import Settings
+
+    return Settings.from_env(
+        course=args.course,
+        require_isolation=getattr(args, "require_isolation", False),
+        record=not getattr(args, "no_record", False),
+    )
+
+
+def _engine(
+    args: argparse.Namespace, *, with_progress: bool = True, warm_sandbox: bool = False
+) -> Engine:
     from slamcourse.engine import Engine
 
-    return Engine.open(args.course, with_progress=with_progress)
-
-
-def _variant(engine: Engine, args: argparse.Namespace, exercise_id: str) -> Variant:
-    return engine.variant(
-        exercise_id, canonical=getattr(args, "canonical", False), seed=getattr(args, "seed", None)
-    )
+    return Engine.open(_settings(args), with_progress=with_progress, warm_sandbox=warm_sandbox)
 
 
 def _target(engine: Engine, given: str | None) -> str:
@@ -137,30 +163,50 @@ def _target(engine: Engine, given: str | None) -> str:
     return current
 
 
-def _show_prompt(
-    out: Out, engine: Engine, exercise_id: str, variant: Variant, *, context: bool
-) -> None:
-    prompt = engine.prompt(exercise_id, variant)
+def _form_markdown(out: Out, form: dict[str, Any]) -> str | None:
+    """The parts of an input form the terminal shows as text (choices, items); None if none."""
+    kind = form["type"]
+    if kind in ("choice", "multi"):
+        return "\n".join(f"- **{o['id']})** {o['text']}" for o in form["options"])
+    if kind == "order":
+        return "\n".join(f"- **{o['id']})** {o['text']}" for o in form["items"])
+    return None
+
+
+def _show_prompt(out: Out, engine: Engine, prompt: Prompt, *, context: bool) -> None:
     index, count = prompt.position
     out.line(
         out.style(f"── {prompt.chapter_title} · exercise {index} of {count} ", "dim")
-        + out.style(f"[{exercise_id}]", "dim")
+        + out.style(f"[{prompt.exercise_id}]", "dim")
     )
     if context:
-        prose = engine.context(exercise_id)
+        prose = engine.context(prompt.exercise_id)
         if prose:
             out.markdown(prose)
             out.line()
     out.line(out.style(prompt.title, "bold", "cyan"))
-    out.markdown(prompt.markdown)
+    out.markdown(prompt.text)
+    if prompt.kind in ("choice", "multi", "order", "line"):
+        listing = _form_markdown(out, prompt.form)
+        if listing:
+            out.line()
+            out.markdown(listing)
+        elif prompt.kind == "line":
+            from slamcourse.render.terminal import render_code_listing
+
+            out.line()
+            out.line(render_code_listing("\n".join(prompt.form["lines"]), color=out.color))
     if prompt.how_to_answer:
         import textwrap
 
-        width = getattr(out, "width", 80)
-        for row in textwrap.wrap(_math(prompt.how_to_answer), width=width):
+        for row in textwrap.wrap(_math(prompt.how_to_answer), width=out.width):
             out.line(out.style(row, "dim"))
-    if variant.seed == 0 and engine.exercise(exercise_id).has_variants:
-        out.line(out.style("(canonical variant: the lesson's own numbers)", "dim"))
+    if prompt.code_file is not None:
+        out.line(f"Your file: {out.style(str(prompt.code_file), 'bold')}")
+    if prompt.practice:
+        out.line(
+            out.style("(canonical variant: the lesson's own numbers; practice, not counted)", "dim")
+        )
 
 
 # ------------------------------------------------------------------------------ commands
@@ -189,22 +235,22 @@ def _ask(out: Out, prompt: str) -> str | None:
     return None if not line else line.rstrip("\n")
 
 
+QUIT = (":q", ":quit", "quit", "exit")
+
+
 def _pose(out: Out, engine: Engine, exercise_id: str, args: argparse.Namespace) -> bool:
     """Pose one exercise until solved, skipped or given up. False when the learner quits."""
-    variant = engine.variant(exercise_id)
+    prompt = engine.pose(exercise_id)
     out.line()
-    _show_prompt(out, engine, exercise_id, variant, context=not args.no_context)
-    for text in engine.hints_shown(exercise_id, variant):
-        out.line(out.style("hint: ", "yellow") + text)
-    code_path = None
-    if engine.exercise(exercise_id).kind == "code":
-        code_path, fresh = engine.code_file(exercise_id)
-        verb = "Starter written to" if fresh else "Your file:"
-        out.line(f"{verb} {out.style(str(code_path), 'bold')}")
+    _show_prompt(out, engine, prompt, context=not args.no_context)
+    for text in prompt.hints_shown:
+        out.line(out.style("hint: ", "yellow") + _math(text))
+    code_path = prompt.code_file
+    if code_path is not None:
+        engine.start_workers()
         out.line(out.style(f"Edit it, then press Enter to check it, or {COMMANDS}", "dim"))
     else:
         out.line(out.style(f"Type your answer, or {COMMANDS}", "dim"))
-    failures = 0
     while True:
         answer = _ask(out, out.style("check> " if code_path else "answer> ", "bold"))
         if answer is None:  # end of input
@@ -213,11 +259,11 @@ def _pose(out: Out, engine: Engine, exercise_id: str, args: argparse.Namespace) 
         command = answer.strip().lower()
         if not command and code_path is None:
             continue
-        if command in (":q", ":quit", "quit", "exit"):
+        if command in QUIT:
             out.line("Progress saved. Run `slamcourse next` to continue.")
             return False
         if command in (":h", ":hint", "hint", "?"):
-            hint = engine.hint(exercise_id, variant)
+            hint = engine.hint(exercise_id)
             if hint.text is None:
                 out.line("No more hints. `:giveup` shows the worked explanation.")
             else:
@@ -229,145 +275,77 @@ def _pose(out: Out, engine: Engine, exercise_id: str, args: argparse.Namespace) 
             out.line("Skipped; it stays open for later.")
             return True
         if command in (":g", ":giveup", "giveup", "give up"):
-            engine.give_up(exercise_id)
             out.line(out.style("Explanation", "bold"))
-            out.markdown(engine.explanation(exercise_id, variant))
+            out.markdown(engine.give_up(exercise_id))
             return _continue(out)
         if code_path is not None:
             if command:
                 out.line(f"Edit {code_path} in your editor; press Enter here to check it.")
                 continue
             out.line(out.style("checking…", "dim"))
-            verdict = engine.check_code(exercise_id, code_path)
+            result = engine.submit_code(exercise_id, path=code_path)
         else:
-            verdict = engine.check(exercise_id, answer, variant)
-        print_verdict(out, verdict)
-        if verdict.passed:
-            out.line(out.style("Explanation", "bold"))
-            out.markdown(engine.explanation(exercise_id, variant))
+            result = engine.submit(exercise_id, answer)
+        print_result(out, result)
+        if result.passed:
             return _continue(out)
-        if verdict.counts_as_attempt:
-            failures += 1
-            if failures == 2 and engine.state(exercise_id).hints_shown == 0:
-                out.line(out.style("Stuck? `:hint` shows a hint.", "dim"))
 
 
 def _continue(out: Out) -> bool:
     answer = _ask(out, out.style("Enter for the next exercise, :quit to stop> ", "dim"))
-    return answer is not None and answer.strip().lower() not in (":q", ":quit", "quit", "q")
+    if answer is None or answer.strip().lower() in (*QUIT, "q"):
+        out.line("Progress saved. Run `slamcourse next` to continue.")
+        return False
+    return True
 
 
 def cmd_check(args: argparse.Namespace, out: Out) -> int:
-    worker = _early_worker(args) if args.answer is None else None
-    try:
-        with _engine(args, with_progress=not args.no_record) as engine:
-            if engine.exercise(args.exercise).kind == "code":
-                return _check_code(args, out, engine, worker)
-            return _check_answer(args, out, engine)
-    finally:
-        if worker is not None:
-            worker.close()
-
-
-def _check_answer(args: argparse.Namespace, out: Out, engine: Engine) -> int:
-    if args.file is not None:
-        raise UsageError(f"{args.exercise} is not a code exercise: use --answer TEXT")
-    if args.answer is None:
-        raise UsageError("give the answer with --answer TEXT (e.g. --answer 0.25)")
-    variant = _variant(engine, args, args.exercise)
-    verdict = engine.check(args.exercise, args.answer, variant, record=not args.no_record)
-    if args.json:
-        out.json(
-            {
-                "exercise": args.exercise,
-                "variant": variant.seed,
-                "answer": args.answer,
-                "verdict": verdict.to_dict(),
-            }
-        )
-    else:
-        print_verdict(out, verdict)
-    return verdict.exit_code
-
-
-def _early_worker(args: argparse.Namespace) -> Any:
-    """Start the sandbox worker before loading the course: without --answer this is a code
-    check (or a usage error, and the worker is closed), and the worker's interpreter then
-    imports numpy while this process loads the course and the reference code."""
-    from slamcourse.errors import SandboxError
-    from slamcourse.sandbox import Worker
-
-    try:
-        return Worker.spawn(require_isolation=args.require_isolation)
-    except SandboxError:
-        return None  # graded later, where the refusal becomes an `error` verdict
-
-
-def _check_code(args: argparse.Namespace, out: Out, engine: Engine, worker: Any = None) -> int:
-    from pathlib import Path
-
-    if args.answer is not None:
-        raise UsageError(
-            f"{args.exercise} is a code exercise: grade a file with --file PATH "
-            "(or leave it out to grade your workspace file)"
-        )
-    if args.file is not None:
-        path = Path(args.file)
-    else:
-        path, _ = engine.code_file(args.exercise, create=False)
-        if not path.exists():
-            raise UsageError(
-                f"no file {path} yet: `slamcourse next` (or `goto {args.exercise}` "
-                "then `next`) writes the starter; or pass --file PATH"
+    # Without --answer this is a code check (or a usage error): start the sandbox worker first,
+    # so its interpreter imports numpy while this process loads the course.
+    with _engine(
+        args, with_progress=not args.no_record, warm_sandbox=args.answer is None
+    ) as engine:
+        if engine.is_code(args.exercise):
+            if args.answer is not None:
+                raise UsageError(
+                    f"{args.exercise} is a code exercise: grade a file with --file PATH "
+                    "(or leave it out to grade your workspace file)"
+                )
+            path = Path(args.file) if args.file is not None else engine.code_file(args.exercise)
+            result = engine.submit_code(args.exercise, path=path)
+            data: dict[str, Any] = {"exercise": args.exercise, "file": str(path)}
+        else:
+            if args.file is not None:
+                raise UsageError(f"{args.exercise} is not a code exercise: use --answer TEXT")
+            if args.answer is None:
+                raise UsageError("give the answer with --answer TEXT (e.g. --answer 0.25)")
+            result = engine.submit(
+                args.exercise, args.answer, canonical=args.canonical, seed=args.seed
             )
-    verdict = engine.check_code(
-        args.exercise,
-        path,
-        require_isolation=args.require_isolation,
-        record=not args.no_record,
-        worker=worker,
-    )
-    if args.json:
-        out.json({"exercise": args.exercise, "file": str(path), "verdict": verdict.to_dict()})
-    else:
-        print_verdict(out, verdict)
-    return verdict.exit_code
+            data = {"exercise": args.exercise, "variant": result.variant, "answer": args.answer}
+        if args.json:
+            out.json({**data, "verdict": result.verdict.to_dict(), "result": result.to_dict()})
+        else:
+            print_result(out, result, explanation=False, interactive=False)
+        return result.exit_code
 
 
 def cmd_show(args: argparse.Namespace, out: Out) -> int:
     with _engine(args, with_progress=not (args.canonical or args.seed is not None)) as engine:
-        variant = _variant(engine, args, args.exercise)
+        prompt = engine.pose(args.exercise, canonical=args.canonical, seed=args.seed)
         if args.json:
-            prompt = engine.prompt(args.exercise, variant)
-            out.json(
-                {
-                    "exercise": args.exercise,
-                    "title": prompt.title,
-                    "kind": prompt.kind,
-                    "chapter": prompt.chapter_title,
-                    "variant": variant.seed,
-                    "prompt": prompt.markdown,
-                    "how_to_answer": prompt.how_to_answer,
-                }
-            )
+            out.json(prompt.to_dict())
         else:
-            _show_prompt(out, engine, args.exercise, variant, context=args.context)
+            _show_prompt(out, engine, prompt, context=args.context)
         return 0
 
 
 def cmd_hint(args: argparse.Namespace, out: Out) -> int:
     with _engine(args) as engine:
         exercise_id = _target(engine, args.exercise)
-        hint = engine.hint(exercise_id, engine.variant(exercise_id))
+        hint = engine.hint(exercise_id)
         if args.json:
-            out.json(
-                {
-                    "exercise": exercise_id,
-                    "number": hint.number,
-                    "total": hint.total,
-                    "hint": hint.text,
-                }
-            )
+            out.json({"exercise": exercise_id, **hint.to_dict()})
         elif hint.text is None:
             out.line(
                 f"No more hints for {exercise_id} ({hint.total} shown). "
@@ -380,14 +358,13 @@ def cmd_hint(args: argparse.Namespace, out: Out) -> int:
 
 
 def cmd_explain(args: argparse.Namespace, out: Out) -> int:
+    from slamcourse.engine import Locked
+
     with _engine(args) as engine:
-        state = engine.state(args.exercise)
-        if state.status == "pending":
-            raise UsageError(
-                f"{args.exercise} is not solved yet: solve it first, or "
-                f"`slamcourse giveup {args.exercise}` to see the explanation"
-            )
-        text = engine.explanation(args.exercise, engine.variant(args.exercise))
+        try:
+            text = engine.explanation(args.exercise)
+        except Locked as exc:
+            raise UsageError(f"{exc} (`slamcourse giveup {args.exercise}`)") from None
         if args.json:
             out.json({"exercise": args.exercise, "explanation": text})
         else:
@@ -397,8 +374,7 @@ def cmd_explain(args: argparse.Namespace, out: Out) -> int:
 
 def cmd_giveup(args: argparse.Namespace, out: Out) -> int:
     with _engine(args) as engine:
-        engine.give_up(args.exercise)
-        out.markdown(engine.explanation(args.exercise, engine.variant(args.exercise)))
+        out.markdown(engine.give_up(args.exercise))
         return 0
 
 
@@ -420,8 +396,7 @@ def cmd_list(args: argparse.Namespace, out: Out) -> int:
             )
             for row in ch["exercises"]:
                 pointer = out.style(" ← next", "cyan") if row["current"] else ""
-                title = engine.exercise(row["id"]).title
-                out.line(f"    {marks[row['status']]} {row['id']:<40} {title}{pointer}")
+                out.line(f"    {marks[row['status']]} {row['id']:<40} {row['title']}{pointer}")
         return 0
 
 
@@ -501,33 +476,15 @@ def cmd_validate(args: argparse.Namespace, out: Out) -> int:
 
 def cmd_doctor(args: argparse.Namespace, out: Out) -> int:
     """What this machine offers the grader: isolation level, paths, versions."""
-    import platform
+    from slamcourse.engine import diagnostics
 
-    import numpy
-
-    from slamcourse.course.locate import course_root
-    from slamcourse.progress import default_home
-    from slamcourse.sandbox import probe_isolation
-    from slamcourse.workspace import workspace_dir
-
-    report = probe_isolation()
-    info = {
-        "slamcourse": __version__,
-        "python": platform.python_version(),
-        "numpy": numpy.__version__,
-        "platform": platform.platform(),
-        "isolation": report.level,
-        "isolation_reason": report.reason,
-        "course": str(course_root(args.course)),
-        "home": str(default_home()),
-        "workspace": str(workspace_dir()),
-    }
+    info = diagnostics(_settings(args))
     if args.json:
         out.json(info)
         return 0
     for key, value in info.items():
         out.line(f"{key + ':':<18} {value}")
-    if report.level != "namespaces":
+    if info["isolation"] != "namespaces":
         out.line(
             out.style(
                 "Learner code runs with resource limits only (no namespaces): fine "
@@ -545,15 +502,14 @@ def cmd_watch(args: argparse.Namespace, out: Out) -> int:
 
     with _engine(args) as engine:
         exercise_id = _target(engine, args.exercise)
-        path, _ = engine.code_file(exercise_id)
+        path = engine.code_file(exercise_id)
+        engine.start_workers()
         out.line(f"Watching {out.style(str(path), 'bold')} ({exercise_id}); Ctrl-C to stop.")
         while True:
             before = signature(path)
-            verdict = engine.check_code(exercise_id, path)
-            print_verdict(out, verdict)
-            if verdict.passed:
-                out.line(out.style("Explanation", "bold"))
-                out.markdown(engine.explanation(exercise_id, engine.variant(exercise_id)))
+            result = engine.submit_code(exercise_id, path=path)
+            print_result(out, result)
+            if result.passed:
                 return 0
             mechanism = wait_for_change(path, poll=args.poll, since=before)
             out.line(out.style(f"changed ({mechanism}); checking…", "dim"))
@@ -728,9 +684,29 @@ _COMMANDS = frozenset(
 )
 
 
+def join_option_values(argv: list[str]) -> list[str]:
+    """``--answer -dx/sqrt(q)`` → ``--answer=-dx/sqrt(q)``: an answer may start with ``-``.
+
+    argparse takes any word that starts with ``-`` and is not a plain number for an option, so
+    the value of an option that takes free text is joined to it before parsing.
+    """
+    out: list[str] = []
+    it = iter(argv)
+    for arg in it:
+        if arg in TEXT_OPTIONS:
+            value = next(it, None)
+            out.append(arg if value is None else f"{arg}={value}")
+        else:
+            out.append(arg)
+    return out
+
+
+TEXT_OPTIONS = frozenset({"--answer"})
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the CLI; the one exit point. Returns the process exit code."""
-    argv = list(sys.argv[1:] if argv is None else argv)
+    argv = join_option_values(list(sys.argv[1:] if argv is None else argv))
     wanted = requested_command(argv)
     known = wanted in _COMMANDS
     parser = build_parser(only=wanted if known else None)
@@ -746,12 +722,32 @@ def main(argv: Sequence[str] | None = None) -> int:
         code: int = args.func(args, out)
         return code
     except SlamcourseError as exc:
-        sys.stdout.flush()
+        _flush_quietly()
         print(f"Error: {exc}", file=sys.stderr)
         return exc.exit_code
     except KeyboardInterrupt:
         print("\nInterrupted; progress is saved.", file=sys.stderr)
         return 130
+    except BrokenPipeError:  # e.g. `slamcourse list | head -3`: the reader has gone
+        _silence_stdout()
+        return 0
+
+
+def _flush_quietly() -> None:
+    try:
+        sys.stdout.flush()
+    except BrokenPipeError:
+        _silence_stdout()
+
+
+def _silence_stdout() -> None:
+    """Point stdout at /dev/null so the interpreter's final flush does not fail again."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        os.close(devnull)
+    except (OSError, ValueError):
+        pass
 
 
 if __name__ == "__main__":

@@ -10,6 +10,7 @@ A learner's mistake is never an exception: checkers turn it into a
 from __future__ import annotations
 
 from dataclasses import dataclass
+from pathlib import Path
 
 # Process exit codes (documented in docs/grading.md).
 EXIT_PASSED = 0
@@ -31,6 +32,14 @@ class Problem:
     def __str__(self) -> str:
         where = f"{self.path}:{self.line}" if self.line else self.path
         return f"{where}: {self.message}"
+
+
+def relpath(path: Path, root: Path) -> str:
+    """``path`` relative to the course root: how problems name course files."""
+    try:
+        return str(path.relative_to(root.parent if root.name == "_course" else root))
+    except ValueError:
+        return str(path)
 
 
 class SlamcourseError(Exception):

@@ -25,9 +25,8 @@ This module is imported by every CLI call, so it imports only the standard libra
 
 from __future__ import annotations
 
-import os
 import sqlite3
-import sys
+import threading
 from collections.abc import Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass
@@ -37,6 +36,7 @@ from types import TracebackType
 from typing import Literal, cast
 
 from slamcourse.errors import ProgressError
+from slamcourse.settings import default_home
 from slamcourse.verdict import Status, Verdict
 
 __all__ = [
@@ -246,29 +246,6 @@ class Attempt:
 # --------------------------------------------------------------------------------------------
 
 
-def default_home() -> Path:
-    """The folder that holds the learner's progress.
-
-    ``$SLAMCOURSE_HOME`` if set (and not empty), else the platform's per-user data folder
-    (e.g. ``~/.local/share/slamcourse`` on Linux).
-    """
-    env = os.environ.get("SLAMCOURSE_HOME")
-    if env:
-        return Path(env).expanduser()
-    if _LINUX:
-        # platformdirs' own rule on Linux (XDG base directories), without its 15 ms import on
-        # every command; other platforms ask platformdirs.
-        xdg = os.environ.get("XDG_DATA_HOME", "").strip()
-        base = Path(xdg) if xdg and Path(xdg).is_absolute() else Path.home() / ".local" / "share"
-        return base / "slamcourse"
-    import platformdirs
-
-    return Path(platformdirs.user_data_dir("slamcourse", appauthor=False))
-
-
-_LINUX: bool = sys.platform.startswith("linux")
-
-
 def default_db_path() -> Path:
     """``<default_home()>/progress.sqlite3``."""
     return default_home() / DB_FILENAME
@@ -350,6 +327,7 @@ class Progress:
         self._path = path
         self._conn: sqlite3.Connection | None = conn
         self._learner_seed = learner_seed
+        self._lock = threading.RLock()
 
     # -- opening ---------------------------------------------------------------------------
 
@@ -385,7 +363,11 @@ class Progress:
 
         try:
             # isolation_level=None: no implicit transactions; writes use BEGIN IMMEDIATE below.
-            conn = sqlite3.connect(path, timeout=BUSY_TIMEOUT_S, isolation_level=None)
+            # check_same_thread=False: a server uses one store from several threads; every use of
+            # the connection holds ``self._lock``, so calls are serialised.
+            conn = sqlite3.connect(
+                path, timeout=BUSY_TIMEOUT_S, isolation_level=None, check_same_thread=False
+            )
         except sqlite3.Error as exc:
             raise _translate(path, exc) from exc
         try:
@@ -449,22 +431,24 @@ class Progress:
 
     @contextmanager
     def _read(self) -> Iterator[sqlite3.Connection]:
-        conn = self._db()
-        try:
-            yield conn
-        except sqlite3.Error as exc:
-            raise _translate(self._path, exc) from exc
+        with self._lock:
+            conn = self._db()
+            try:
+                yield conn
+            except sqlite3.Error as exc:
+                raise _translate(self._path, exc) from exc
 
     @contextmanager
     def _write(self) -> Iterator[sqlite3.Connection]:
         """One transaction: committed if the block succeeds, rolled back otherwise."""
-        conn = self._db()
-        try:
-            with conn:
-                conn.execute(_SQL.begin)
-                yield conn
-        except sqlite3.Error as exc:
-            raise _translate(self._path, exc) from exc
+        with self._lock:
+            conn = self._db()
+            try:
+                with conn:
+                    conn.execute(_SQL.begin)
+                    yield conn
+            except sqlite3.Error as exc:
+                raise _translate(self._path, exc) from exc
 
     def close(self) -> None:
         """Close the database. Safe to call twice."""
@@ -539,16 +523,24 @@ class Progress:
             }
 
     def record_attempt(
-        self, exercise_id: str, variant: int, answer: str, verdict: Verdict
+        self,
+        exercise_id: str,
+        variant: int,
+        answer: str,
+        verdict: Verdict,
+        *,
+        practice: bool = False,
     ) -> ExerciseState:
         """Log an answer and its verdict, and update the exercise's state; return the new state.
 
         In one transaction: the attempt is appended to the log; ``attempts`` grows only if
         ``verdict.counts_as_attempt``; a passing verdict makes the exercise ``solved`` (and it
         stays solved after later failures; ``solved_at`` keeps the first solve's time).
+        A ``practice`` attempt (the lesson's own numbers) is logged, never counted, and leaves
+        the state as it was.
         """
         now = _now()
-        counted = int(verdict.counts_as_attempt)
+        counted = int(verdict.counts_as_attempt and not practice)
         with self._write() as conn:
             conn.execute(
                 _SQL.insert_attempt,
@@ -564,6 +556,8 @@ class Progress:
                     counted,
                 ),
             )
+            if practice:
+                return self._fetch_state(conn, exercise_id)
             conn.execute(_SQL.ensure_state, (exercise_id, now))
             conn.execute(_SQL.apply_attempt, (counted, int(verdict.passed), now, exercise_id))
             return self._fetch_state(conn, exercise_id)

@@ -7,9 +7,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from slamcourse.course import templates, variants
-from slamcourse.course.loader import Course, load_course, relpath
+from slamcourse.course.loader import Course, load_course
 from slamcourse.course.model import ExerciseSpec
-from slamcourse.errors import CourseError, GraderError, Problem
+from slamcourse.errors import CourseError, GraderError, Problem, relpath
 from slamcourse.kinds import get_kind
 
 

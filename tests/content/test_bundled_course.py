@@ -20,8 +20,11 @@ def test_course_index_has_no_problems() -> None:
 
 
 def test_every_exercise_file_is_placed() -> None:
-    unplaced = [p for p in validate_course(ROOT, variants_per_exercise=0).problems
-                if "is not placed" in p.message]
+    unplaced = [
+        p
+        for p in validate_course(ROOT, variants_per_exercise=0).problems
+        if "is not placed" in p.message
+    ]
     assert unplaced == []
 
 

@@ -76,8 +76,9 @@ def test_ransac_iteration_counts(w: float, s: int, n: int) -> None:
 def test_lesson_epipolar_residual() -> None:
     E = [[0, -1, 0], [1, 0, -0.5], [0, 0.3, 0]]
     assert vision.epipolar_residual(E, [0.5, 0.3, 1], [0.6, 0.2, 1]) == pytest.approx(-0.09)
-    assert vision.mistake_epipolar_transposed(E, [0.5, 0.3, 1], [0.6, 0.2, 1]) == \
-        pytest.approx(-0.01)
+    assert vision.mistake_epipolar_transposed(E, [0.5, 0.3, 1], [0.6, 0.2, 1]) == pytest.approx(
+        -0.01
+    )
 
 
 def test_essential_matrix_satisfies_the_epipolar_constraint() -> None:
@@ -680,18 +681,31 @@ CASES = [
 
 def _case_id(case: tuple[str, str, str, str | None]) -> str:
     exercise, source = case[0], case[1]
-    for table in (BUILD_OMEGA, SOLVE_INFORMATION, RANSAC_ITERATIONS, EPIPOLAR, ESSENTIAL,
-                  BEST_LINE, FILL_IN, LOG_ODDS, RAY):
+    for table in (
+        BUILD_OMEGA,
+        SOLVE_INFORMATION,
+        RANSAC_ITERATIONS,
+        EPIPOLAR,
+        ESSENTIAL,
+        BEST_LINE,
+        FILL_IN,
+        LOG_ODDS,
+        RAY,
+    ):
         for name, text in table.items():
             if text is source:
                 return f"{exercise.split('/')[1]}-{name}"
     return exercise
 
 
-@pytest.mark.parametrize(("exercise_id", "source", "expected_status", "expected_misconception"),
-                         CASES, ids=[_case_id(c) for c in CASES])
-def test_learner_code_is_graded(exercise_id: str, source: str, expected_status: str,
-                                expected_misconception: str | None) -> None:
+@pytest.mark.parametrize(
+    ("exercise_id", "source", "expected_status", "expected_misconception"),
+    CASES,
+    ids=[_case_id(c) for c in CASES],
+)
+def test_learner_code_is_graded(
+    exercise_id: str, source: str, expected_status: str, expected_misconception: str | None
+) -> None:
     verdict = grade(exercise_id, source)
     assert verdict.status == expected_status, verdict.feedback
     assert verdict.misconception == expected_misconception, verdict.feedback
@@ -741,8 +755,9 @@ CANONICAL = [
 
 
 @pytest.mark.parametrize(("exercise_id", "answer", "passes", "misconception"), CANONICAL)
-def test_canonical_answers(exercise_id: str, answer: str, passes: bool,
-                           misconception: str | None) -> None:
+def test_canonical_answers(
+    exercise_id: str, answer: str, passes: bool, misconception: str | None
+) -> None:
     from slamcourse.course import variants
 
     spec = COURSE.exercise(exercise_id)

@@ -66,8 +66,9 @@ def test_next_on_bundled_course_solves_first_exercise(private_home: Path) -> Non
     child.expect_exact("answer> ")
     # ask the engine for the learner's own correct answer, as a learner with pen and paper would
     from slamcourse.engine import Engine
+    from slamcourse.settings import Settings
 
-    with Engine.open(progress_path=private_home / "progress.sqlite3") as engine:
+    with Engine.open(Settings.from_env(home=private_home)) as engine:
         spec = engine.exercise(exercise_id)
         from slamcourse.kinds import get_kind
 
@@ -88,7 +89,7 @@ def test_code_exercise_in_next(private_home: Path) -> None:
     assert main(["--course", str(FIXTURE_COURSE), "goto", "basics/range-bearing"]) == 0
     child = spawn(private_home, "--course", str(FIXTURE_COURSE), "next", "--no-context")
     child.expect_exact("Write range_bearing")
-    child.expect(r"Starter written to (\S+\.py)")
+    child.expect(r"Your file: (\S+\.py)")
     path = Path(child.match.group(1))
     assert path.is_file() and "NotImplementedError" in path.read_text()
     child.expect_exact("check> ")

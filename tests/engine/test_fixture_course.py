@@ -7,19 +7,26 @@ from pathlib import Path
 import pytest
 
 from slamcourse.course.loader import load_course
-from slamcourse.engine import Engine
-from slamcourse.progress import Progress
+from slamcourse.engine import Engine, Locked
+from slamcourse.settings import Settings
 from slamcourse.validate import validate_course
 from tests.conftest import FIXTURE_COURSE
 
 
+def settings(tmp_path: Path, **changes: object) -> Settings:
+    return Settings(home=tmp_path / "home", workspace=tmp_path / "ws", course=FIXTURE_COURSE).but(
+        **changes
+    )
+
+
 @pytest.fixture
 def engine(tmp_path: Path) -> Engine:
-    return Engine(load_course(FIXTURE_COURSE), Progress.open(tmp_path / "p.sqlite3"))
+    with Engine.open(settings(tmp_path)) as opened:
+        yield opened
 
 
 def grade(engine: Engine, exercise_id: str, answer: str, seed: int = 0):  # type: ignore[no-untyped-def]
-    return engine.check(exercise_id, answer, engine.variant(exercise_id, seed=seed), record=False)
+    return engine.submit(exercise_id, answer, seed=seed).verdict
 
 
 def test_fixture_course_loads_in_chapter_order() -> None:
@@ -109,28 +116,32 @@ def test_variants_are_deterministic_and_distinct(engine: Engine) -> None:
     assert v7 == engine.variant("basics/distance", seed=7)
     assert v7.params != engine.variant("basics/distance", seed=8).params
     want = (v7.params["dx"] ** 2 + v7.params["dy"] ** 2) ** 0.5
-    assert engine.check("basics/distance", repr(want), v7, record=False).passed
+    assert engine.submit("basics/distance", repr(want), seed=7).passed
     mine = engine.variant("basics/distance")
     assert mine.seed >= 1  # each learner gets their own variant
 
 
 def test_learner_flow(engine: Engine) -> None:
     assert engine.next_exercise() == "basics/distance"
-    variant = engine.variant("basics/distance")
-    assert not engine.check("basics/distance", "1e9", variant).passed
+    assert not engine.submit("basics/distance", "1e9").passed
     assert engine.state("basics/distance").attempts == 1
-    engine.check("basics/distance", "nonsense", variant)
+    unreadable = engine.submit("basics/distance", "nonsense")
+    assert not unreadable.counted
     assert engine.state("basics/distance").attempts == 1  # invalid answers cost nothing
-    hint = engine.hint("basics/distance", variant)
+    hint = engine.hint("basics/distance")
     assert (hint.number, hint.total, hint.text) == (1, 2, "Pythagoras.")
-    assert engine.hint("basics/distance", variant).number == 2
-    assert engine.hint("basics/distance", variant).text is None
-    answer = repr(float(engine.explanation("basics/distance", variant).split()[3]))
-    assert engine.check("basics/distance", answer, variant).passed
+    assert engine.hint("basics/distance").number == 2
+    assert engine.hint("basics/distance").text is None
+    params = engine.variant("basics/distance").params
+    answer = repr((params["dx"] ** 2 + params["dy"] ** 2) ** 0.5)
+    solved = engine.submit("basics/distance", answer)
+    assert solved.passed and solved.exercise_status == "solved"
+    assert solved.explanation and solved.explanation == engine.explanation("basics/distance")
     assert engine.next_exercise() == "basics/heading"
     assert engine.skip("basics/heading") == "basics/count"
     assert engine.next_exercise() == "basics/count"
-    engine.give_up("basics/count")
+    assert engine.give_up("basics/count")  # the explanation
+    assert engine.state("basics/count").status == "given_up"
     assert engine.next_exercise() == "basics/offset"
     engine.goto("basics/heading")
     assert engine.next_exercise() == "basics/heading"
@@ -138,11 +149,78 @@ def test_learner_flow(engine: Engine) -> None:
     assert engine.state("basics/distance").status == "pending"
 
 
+def test_explanation_is_locked_until_solved_or_given_up(engine: Engine) -> None:
+    with pytest.raises(Locked):
+        engine.explanation("basics/distance")
+    wrong = engine.submit("basics/distance", "1e9")
+    assert wrong.explanation is None and wrong.to_dict()["explanation"] is None
+    with pytest.raises(Locked):
+        engine.explanation("basics/distance")
+    assert engine.give_up("basics/distance")
+    assert engine.explanation("basics/distance")
+
+
+def test_hint_nudge_after_repeated_misses_without_a_hint(engine: Engine) -> None:
+    assert engine.submit("basics/distance", "1e9").nudge is None
+    assert engine.submit("basics/distance", "nonsense").nudge is None  # not counted
+    assert engine.submit("basics/distance", "2e9").nudge == "Stuck? A hint is available."
+    engine.hint("basics/distance")
+    assert engine.submit("basics/distance", "3e9").nudge is None
+
+
+def test_canonical_answers_are_practice_never_a_solve(engine: Engine) -> None:
+    canonical = engine.submit("basics/distance", "5", canonical=True)
+    assert canonical.passed and canonical.practice and not canonical.counted
+    assert canonical.explanation is not None  # the canonical explanation, for practice
+    state = engine.state("basics/distance")
+    assert (state.status, state.attempts) == ("pending", 0)
+    wrong = engine.submit("basics/distance", "6", canonical=True)
+    assert not wrong.counted and engine.state("basics/distance").attempts == 0
+    logged = engine.progress.attempts("basics/distance") if engine.progress else []
+    assert [a.variant for a in logged] == [0, 0]  # graded and logged
+    # an exercise without variants has only the canonical one: that is the learner's own
+    own = engine.submit("basics/pick", "a", canonical=True)
+    assert own.passed and not own.practice and engine.state("basics/pick").status == "solved"
+
+
+def test_no_record_grades_without_writing(tmp_path: Path) -> None:
+    with Engine.open(settings(tmp_path, record=False)) as engine:
+        result = engine.submit("basics/distance", "1e9")
+        assert not result.passed and not result.counted
+        assert engine.state("basics/distance").attempts == 0
+
+
 def test_prompt_and_context(engine: Engine) -> None:
-    prompt = engine.prompt("basics/distance", engine.variant("basics/distance", canonical=True))
-    assert "(3, 4)" in prompt.markdown and prompt.position == (1, 11)
+    prompt = engine.pose("basics/distance", canonical=True)
+    assert "(3, 4)" in prompt.text and prompt.position == (1, 11)
+    assert prompt.practice and prompt.variant.seed == 0
     assert "within 1%" in prompt.how_to_answer
+    assert prompt.form == {"type": "number", "units": "m", "integer": False, "angle": False}
     assert "fixture chapter" in engine.context("basics/distance")
     assert "Angles are in radians" in engine.context("basics/heading")
-    bug = engine.prompt("basics/bug", engine.variant("basics/bug"))
-    assert "3 │     return s" in bug.markdown
+    bug = engine.pose("basics/bug")
+    assert bug.form["type"] == "line" and bug.form["lines"][2] == "    return s"
+    data = engine.pose("basics/offset").to_dict()
+    assert data["form"]["type"] == "vector" and data["form"]["length"] == 2
+    assert data["hints"] == {"shown": [], "total": len(engine.exercise("basics/offset").hints)}
+    pick = engine.pose("basics/pick").to_dict()["form"]
+    assert pick["type"] == "choice" and {o["id"] for o in pick["options"]} >= {"a", "b"}
+    steps = engine.pose("basics/steps").to_dict()["form"]
+    assert steps["type"] == "order" and len(steps["items"]) == 3
+
+
+def test_chapters_and_segments(engine: Engine) -> None:
+    (chapter,) = engine.chapters()
+    assert chapter.id == "basics" and chapter.exercise_ids[0] == "basics/distance"
+    segments = engine.chapter_segments("basics")
+    assert [s.exercise_id for s in segments][:2] == ["basics/distance", "basics/heading"]
+    assert segments[-1].exercise_id is None
+
+
+def test_text_answer_to_code_exercise_is_a_usage_error(engine: Engine) -> None:
+    from slamcourse.errors import UsageError
+
+    with pytest.raises(UsageError, match="code exercise"):
+        engine.submit("basics/range-bearing", "1")
+    with pytest.raises(UsageError, match="answer it with text"):
+        engine.submit_code("basics/distance", source="x = 1")

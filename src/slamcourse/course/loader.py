@@ -21,10 +21,12 @@ from slamcourse.course.model import (
 )
 from slamcourse.course.schema import Checker, suggest
 from slamcourse.course.yamlio import LineDict, LineList, load_yaml
-from slamcourse.errors import CourseError, Problem, UsageError
+from slamcourse.errors import CourseError, Problem, UsageError, relpath
+
+__all__ = ["Course", "chapter_segments", "directive_id", "load_course", "load_exercise", "relpath"]
 
 _ID = re.compile(r"^[a-z0-9]+(?:-[a-z0-9]+)*$")
-_DIRECTIVE = re.compile(r"^(?P<fence>`{3,}|~{3,})\s*\{exercise\}\s*(?P<id>\S*)\s*$")
+_FENCE = re.compile(r"^(?P<fence>`{3,}|~{3,})(?P<info>.*)$")
 _FRONT = re.compile(r"\A---[ \t]*\n(?P<body>.*?\n)---[ \t]*(?:\n|\Z)", re.S)
 
 COMMON_KEYS = {
@@ -45,12 +47,22 @@ COMMON_KEYS = {
 CHAPTER_KEYS = {"id": True, "title": True, "summary": False}
 
 
-def relpath(path: Path, root: Path) -> str:
-    """``path`` relative to the course root (how problems name files)."""
-    try:
-        return str(path.relative_to(root.parent if root.name == "_course" else root))
-    except ValueError:
-        return str(path)
+def directive_id(info: str) -> str | None:
+    """The exercise id of a fenced block's info string ``{exercise} ID`` (``""`` when the id is
+    missing), or None when the block is not an exercise directive. The one parser of it."""
+    words = info.split(None, 1)
+    if not words or words[0] != "{exercise}":
+        return None
+    return words[1].strip() if len(words) > 1 else ""
+
+
+def _directive(line: str) -> tuple[str, str] | None:
+    """``(fence, exercise id)`` when ``line`` opens an exercise directive block."""
+    match = _FENCE.match(line)
+    if match is None:
+        return None
+    ex_id = directive_id(match.group("info"))
+    return None if ex_id is None or " " in ex_id else (match.group("fence"), ex_id)
 
 
 class Course:
@@ -213,10 +225,10 @@ def _index_chapter(path: Path, root: Path, number: int, problems: list[Problem])
         check.typed(meta, "summary", str, ""),
     )
     for lineno, line in enumerate(text.splitlines(), start=1):
-        found = _DIRECTIVE.match(line)
-        if not found:
+        found = _directive(line)
+        if found is None:
             continue
-        ex_id = found.group("id")
+        ex_id = found[1]
         if not ex_id:
             check.add(
                 lineno,
@@ -262,9 +274,9 @@ def chapter_segments(chapter: Chapter) -> list[tuple[str | None, str]]:
                 segments.append((pending, "".join(buf)))
                 buf, fence, pending = [], None, None
             continue
-        found = _DIRECTIVE.match(line.rstrip("\n"))
-        if found and found.group("id"):
-            fence, pending = found.group("fence"), found.group("id")
+        found = _directive(line.rstrip("\n"))
+        if found is not None and found[1]:
+            fence, pending = found
             continue
         buf.append(line)
     segments.append((None, "".join(buf)))

@@ -102,6 +102,6 @@ def _error_line(exc: BaseException, path: Path) -> int | None:
 
 
 def _rel(spec: ExerciseSpec, path: Path) -> str:
-    from slamcourse.course.loader import relpath
+    from slamcourse.errors import relpath
 
     return relpath(path, spec.course_root)

@@ -115,7 +115,7 @@ def render(spec: ExerciseSpec, text: Text, context: dict[str, Any]) -> str:
         return fast.strip()
     import jinja2
 
-    from slamcourse.course.loader import relpath
+    from slamcourse.errors import relpath
 
     try:
         return str(_compile(text.source).render(**context)).strip()

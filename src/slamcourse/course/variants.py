@@ -101,6 +101,6 @@ def _failed_requirement(spec: ExerciseSpec, params: dict[str, Any]) -> Any:
 
 
 def _rel(spec: ExerciseSpec) -> str:
-    from slamcourse.course.loader import relpath
+    from slamcourse.errors import relpath
 
     return relpath(spec.path, spec.course_root)

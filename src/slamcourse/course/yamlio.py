@@ -154,17 +154,24 @@ def _parse(text: str, path: str) -> Any:
 _MISSING = object()
 
 
-def _cache_file(text: str) -> Path:
-    from slamcourse.progress import default_home
+def _cache_file(text: str) -> Path | None:
+    """Where the parse of ``text`` is cached; None when no engine set a cache folder."""
+    from slamcourse.settings import cache_dir
 
+    root = cache_dir()
+    if root is None:
+        return None
     data = text.encode("utf-8", "surrogatepass")
     name = f"{zlib.crc32(data):08x}{zlib.adler32(data):08x}{len(data):x}.json"
-    return default_home() / "cache" / "yaml" / name
+    return root / "yaml" / name
 
 
 def _cached(text: str) -> Any:
+    path = _cache_file(text)
+    if path is None:
+        return _MISSING
     try:
-        entry = json.loads(_cache_file(text).read_text(encoding="utf-8"))
+        entry = json.loads(path.read_text(encoding="utf-8"))
         if entry["text"] != text:
             return _MISSING
         return _decode(entry["data"])
@@ -178,6 +185,8 @@ def _store(text: str, data: Any) -> None:
     except (TypeError, ValueError):  # e.g. a YAML date: simply not cached
         return
     path = _cache_file(text)
+    if path is None:
+        return
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
         tmp = path.with_name(f".{path.name}.{os.getpid()}")

@@ -1,39 +1,79 @@
-"""A pre-started worker for the next check, for engines that live longer than one check.
+"""Sandboxed workers for an engine: started early, handed out fresh, spawned from one thread.
 
-Each submission still gets a fresh interpreter (a worker is never reused); the pool only starts
-the next one early, so its numpy import is done by the time the learner checks again.
+Each submission gets a fresh interpreter (a worker is never reused); the pool only starts the
+next one early, so its numpy import is done by the time the learner checks. Every worker is
+spawned from one long-lived thread of the pool: bubblewrap's ``--die-with-parent`` follows the
+*thread* that started the process, so a worker spawned from a short-lived request thread of a
+server would be killed when that thread ends.
 """
 
 from __future__ import annotations
 
+import contextlib
+import threading
+from concurrent.futures import Future, ThreadPoolExecutor
+
+from slamcourse.errors import SandboxError
 from slamcourse.sandbox import Limits, Worker
 
 
 class WorkerPool:
-    """Hands out fresh sandboxed workers, keeping one spare already starting."""
+    """Hands out fresh sandboxed workers.
 
-    def __init__(self, *, require_isolation: bool = False, limits: Limits | None = None) -> None:
+    ``keep_spare``: after each :meth:`take`, start the next worker at once (long-running faces:
+    the browser, ``watch``, ``next``). A one-shot command starts one worker early with
+    :meth:`warm` and keeps no spare, so no interpreter is started for nothing.
+    """
+
+    def __init__(
+        self,
+        *,
+        require_isolation: bool = False,
+        limits: Limits | None = None,
+        keep_spare: bool = False,
+    ) -> None:
         self.require_isolation = require_isolation
         self.limits = limits
-        self._spare: Worker | None = None
+        self.keep_spare = keep_spare
+        self._lock = threading.Lock()
+        self._spare: Future[Worker] | None = None
+        self._spawner: ThreadPoolExecutor | None = None
 
-    def _spawn(self) -> Worker:
-        return Worker.spawn(limits=self.limits, require_isolation=self.require_isolation)
-
-    def take(self) -> Worker:
-        """A fresh worker (the spare if it is alive), and start the next spare."""
-        worker = self._spare if self._spare is not None and self._spare.alive else None
-        if worker is None:
-            worker = self._spawn()
-        self._spare = self._spawn()
-        return worker
+    def _spawn_later(self) -> Future[Worker]:
+        if self._spawner is None:
+            self._spawner = ThreadPoolExecutor(max_workers=1, thread_name_prefix="sandbox-spawn")
+        return self._spawner.submit(
+            Worker.spawn, limits=self.limits, require_isolation=self.require_isolation
+        )
 
     def warm(self) -> None:
-        """Start a spare now (e.g. when a code exercise is shown, before the learner checks)."""
-        if self._spare is None or not self._spare.alive:
-            self._spare = self._spawn()
+        """Start a worker now, so the next :meth:`take` finds it ready (or nearly)."""
+        with self._lock:
+            if self._spare is None:
+                self._spare = self._spawn_later()
+
+    def take(self) -> Worker:
+        """A fresh worker (the spare when it is alive); raises SandboxError when none can run."""
+        with self._lock:
+            pending, self._spare = self._spare, None
+            if pending is None:
+                pending = self._spawn_later()
+            if self.keep_spare:
+                self._spare = self._spawn_later()
+        worker = pending.result()
+        if not worker.alive:  # the spare died while waiting (e.g. killed): start another
+            worker.close()
+            with self._lock:
+                again = self._spawn_later()
+            worker = again.result()
+        return worker
 
     def close(self) -> None:
-        if self._spare is not None:
-            self._spare.close()
-            self._spare = None
+        with self._lock:
+            pending, self._spare = self._spare, None
+            spawner, self._spawner = self._spawner, None
+        if pending is not None:
+            with contextlib.suppress(SandboxError):  # it never started: nothing to close
+                pending.result().close()
+        if spawner is not None:
+            spawner.shutdown(wait=True)

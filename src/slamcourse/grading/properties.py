@@ -193,10 +193,16 @@ def replay(
     return outcome
 
 
-def collect_failures(outcome: Outcome, *, inputs: Sequence[dict[str, Any]],
-                     signature: Sequence[str], returns: Any, tolerance: Tolerance,
-                     reference: Callable[..., Any],
-                     call: Callable[[Sequence[Any]], CallResult]) -> None:
+def collect_failures(
+    outcome: Outcome,
+    *,
+    inputs: Sequence[dict[str, Any]],
+    signature: Sequence[str],
+    returns: Any,
+    tolerance: Tolerance,
+    reference: Callable[..., Any],
+    call: Callable[[Sequence[Any]], CallResult],
+) -> None:
     """Add the inputs among ``inputs`` on which the callee returns a wrong value to
     ``outcome.failures`` (evidence for recognising a misconception; the verdict's reported
     failure stays the minimal one)."""

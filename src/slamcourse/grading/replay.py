@@ -35,16 +35,20 @@ def recording_key(spec: ExerciseSpec, seed: int, max_examples: int) -> str:
     return f"{spec.id.replace('/', '--')}-{digest.hexdigest()[:24]}"
 
 
-def _path(key: str) -> Path:
-    from slamcourse.progress import default_home
+def _path(key: str) -> Path | None:
+    from slamcourse.settings import cache_dir
 
-    return default_home() / "cache" / "inputs" / f"{key}.json"
+    root = cache_dir()
+    return None if root is None else root / "inputs" / f"{key}.json"
 
 
 def load(key: str) -> list[dict[str, Any]] | None:
     """The recorded inputs, or None when there is no (readable) recording."""
+    path = _path(key)
+    if path is None:
+        return None
     try:
-        data = json.loads(_path(key).read_text(encoding="utf-8"))
+        data = json.loads(path.read_text(encoding="utf-8"))
         return [_decode(item) for item in data["inputs"]]
     except (OSError, ValueError, KeyError, TypeError):
         return None
@@ -53,6 +57,8 @@ def load(key: str) -> list[dict[str, Any]] | None:
 def save(key: str, inputs: list[dict[str, Any]]) -> None:
     """Record ``inputs`` atomically; a cache that cannot be written is simply skipped."""
     path = _path(key)
+    if path is None:
+        return
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
         payload = json.dumps({"inputs": [_encode(i) for i in inputs]}, allow_nan=False)

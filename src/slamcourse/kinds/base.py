@@ -6,11 +6,10 @@ from abc import ABC, abstractmethod
 from typing import Any, ClassVar
 
 from slamcourse.course import reference, templates
-from slamcourse.course.loader import relpath
 from slamcourse.course.model import ExerciseSpec, Misconception, Text, Variant
 from slamcourse.course.schema import Checker
 from slamcourse.course.yamlio import LineDict
-from slamcourse.errors import CourseError, Problem
+from slamcourse.errors import CourseError, Problem, relpath
 from slamcourse.verdict import Verdict
 
 
@@ -61,9 +60,10 @@ class Kind(ABC):
         """One line telling the learner what form of answer is expected and what is accepted."""
         return ""
 
-    def extra(self, spec: ExerciseSpec, variant: Variant) -> str:
-        """Markdown shown after the prompt (choices, a code listing, items to order)."""
-        return ""
+    def form(self, spec: ExerciseSpec, variant: Variant) -> dict[str, Any]:
+        """The expected input form as data: ``{"type": <kind>, ...}`` with the shape, units,
+        options, items or listing a face needs to render an input (see docs/architecture.md)."""
+        return {"type": self.name}
 
     # ---- validation
     def self_test(self, spec: ExerciseSpec, variant: Variant) -> list[Problem]:

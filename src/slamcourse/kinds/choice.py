@@ -116,8 +116,9 @@ class ChoiceKind(Kind):
             random.Random(f"{spec.id}:{variant.seed}:choices").shuffle(choices)
         return choices
 
-    def extra(self, spec: ExerciseSpec, variant: Variant) -> str:
-        return "\n".join(f"- **{c.id})** {c.text}" for c in self.display_order(spec, variant))
+    def form(self, spec: ExerciseSpec, variant: Variant) -> dict[str, Any]:
+        options = [{"id": c.id, "text": c.text} for c in self.display_order(spec, variant)]
+        return {"type": self.name, "options": options}
 
     def how_to_answer(self, spec: ExerciseSpec, variant: Variant) -> str:
         ids = ", ".join(c.id for c in self.display_order(spec, variant))

@@ -150,9 +150,18 @@ class CodeKind(Kind):
         """Code exercises have no single answer; the explanation sees the function's name."""
         return spec.options.function
 
+    def form(self, spec: ExerciseSpec, variant: Variant) -> dict[str, Any]:
+        opts: CodeOptions = spec.options
+        return {
+            "type": "code",
+            "function": opts.function,
+            "signature": list(opts.signature),
+            "starter": opts.starter.read_text(encoding="utf-8", errors="replace"),
+        }
+
     def how_to_answer(self, spec: ExerciseSpec, variant: Variant) -> str:
         sig = f"{spec.options.function}({', '.join(spec.options.signature)})"
-        return f"Write `{sig}` in the file shown, then check it (Enter, or `slamcourse check`)."
+        return f"Write `{sig}`, then submit it for checking."
 
     def check(self, spec: ExerciseSpec, variant: Variant, answer: str) -> Verdict:
         return self.check_source(spec, answer, f"{spec.options.function}.py")
@@ -172,16 +181,19 @@ class CodeKind(Kind):
         filename: str,
         *,
         require_isolation: bool = False,
-        worker: Any = None,
+        spawn: Any = None,
     ) -> Verdict:
-        """Grade learner ``source`` in a sandboxed worker (spawned here unless given)."""
+        """Grade learner ``source`` in a fresh sandboxed worker: ``spawn()`` hands one out (the
+        engine's pool); without it one is spawned here."""
         from slamcourse.errors import GraderError
         from slamcourse.sandbox import Worker
 
         if len(source.encode("utf-8", "replace")) > MAX_SOURCE_BYTES:
             return Verdict.unreadable(f"{filename} is larger than {MAX_SOURCE_BYTES // 1024} KiB")
         try:
-            if worker is None:  # start the interpreter now; it imports numpy while we prepare
+            if spawn is not None:
+                worker = spawn()
+            else:  # start the interpreter now; it imports numpy while we prepare
                 worker = Worker.spawn(require_isolation=require_isolation)
             with worker:
                 opts: CodeOptions = spec.options
@@ -281,15 +293,21 @@ class CodeKind(Kind):
                 **details,
             )
         if failure.kind == "raised":
-            where = "".join(f"\n  {filename}:{f.line}: {f.text}" for f in failure.frames[-3:])
-            text = f"{call_text} raised {failure.message}{where}"
+            where = "".join(f"\n- `{filename}:{f.line}`: `{f.text}`" for f in failure.frames[-3:])
+            text = f"`{call_text}` raised {_sentence(failure.message)}" + (
+                f"\n{where}" if where else ""
+            )
         else:
             text = (
-                f"Wrong result for {call_text}:\n  expected {show(to_plain(failure.expected))}"
-                f"\n  got      {show(failure.got)}\n  ({failure.message})"
+                f"Wrong result for `{call_text}`:\n\n"
+                f"- expected `{show(to_plain(failure.expected))}`\n"
+                f"- got `{show(failure.got)}`\n\n{_sentence(failure.message)}"
             )
         tried = f"{outcome.examples} test input{'s' if outcome.examples != 1 else ''}"
-        text += f"\n(smallest failing input found after {tried})"
+        if any(failure.kwargs == ex for ex in opts.examples):
+            text += f"\n\nThis is one of the exercise's fixed edge cases ({tried} run)."
+        else:
+            text += f"\n\nThe grader shrank the failure to this small input ({tried} run)."
         candidates = [
             (m.id, reference.function(spec, m.function or "", m.line)) for m in spec.misconceptions
         ]
@@ -307,7 +325,7 @@ class CodeKind(Kind):
         if found:
             m = next(m for m in spec.misconceptions if m.id == found)
             message = render(spec, m.message, Variant(0, {}))
-            return Verdict.wrong(f"{text}\n{message}", misconception=found, **details)
+            return Verdict.wrong(f"{text}\n\n{message}", misconception=found, **details)
         return Verdict.wrong(text, **details)
 
     # ------------------------------------------------------------------ validation
@@ -395,6 +413,13 @@ def _load_verdict(loaded: Any, filename: str, opts: CodeOptions) -> Verdict:
             "loop at the top level of the file?",
         )
     return Verdict.wrong(f"{filename} stopped the grader's worker while loading: {loaded.message}")
+
+
+def _sentence(text: str) -> str:
+    text = text.strip()
+    if not text:
+        return ""
+    return text[0].upper() + text[1:] + ("" if text.endswith((".", "!", "?")) else ".")
 
 
 def _plain(data: Any) -> Any:

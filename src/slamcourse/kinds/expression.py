@@ -152,6 +152,12 @@ class ExpressionKind(Kind):
             point={n: float(env[n][bad]) for n in names},
         )
 
+    def form(self, spec: ExerciseSpec, variant: Variant) -> dict[str, Any]:
+        names = [v.name for v in spec.options.variables]
+        from slamcourse.answers.expr import FUNCTIONS
+
+        return {"type": "expression", "variables": names, "functions": sorted(FUNCTIONS)}
+
     def how_to_answer(self, spec: ExerciseSpec, variant: Variant) -> str:
         names = ", ".join(v.name for v in spec.options.variables)
         return (

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import ClassVar
+from typing import Any, ClassVar
 
 from slamcourse.answers import parse_integer
 from slamcourse.course.model import ExerciseSpec, Variant
@@ -24,13 +24,6 @@ class LineOptions:
     @property
     def count(self) -> int:
         return len(self.code.rstrip("\n").splitlines())
-
-
-def numbered(code: str) -> str:
-    """The listing with right-aligned line numbers, as learners see it."""
-    rows = code.rstrip("\n").splitlines()
-    width = len(str(len(rows)))
-    return "\n".join(f"{i:>{width}} │ {row}" for i, row in enumerate(rows, start=1))
 
 
 class LineKind(Kind):
@@ -83,8 +76,10 @@ class LineKind(Kind):
         answer: int = spec.options.answer
         return answer
 
-    def extra(self, spec: ExerciseSpec, variant: Variant) -> str:
-        return "```text\n" + numbered(spec.options.code) + "\n```"
+    def form(self, spec: ExerciseSpec, variant: Variant) -> dict[str, Any]:
+        opts: LineOptions = spec.options
+        lines = opts.code.rstrip("\n").splitlines()
+        return {"type": "line", "language": opts.language, "lines": lines}
 
     def how_to_answer(self, spec: ExerciseSpec, variant: Variant) -> str:
         return f"Answer with the number of the buggy line (1–{spec.options.count})."

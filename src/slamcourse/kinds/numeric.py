@@ -170,6 +170,15 @@ class NumberKind(Kind):
                 )
         return ""
 
+    def form(self, spec: ExerciseSpec, variant: Variant) -> dict[str, Any]:
+        opts: NumericOptions = spec.options
+        return {
+            "type": "number",
+            "units": opts.units or None,
+            "integer": opts.exact,
+            "angle": bool(opts.angle),
+        }
+
     def how_to_answer(self, spec: ExerciseSpec, variant: Variant) -> str:
         opts: NumericOptions = spec.options
         units = f" in {opts.units}" if opts.units else ""
@@ -301,6 +310,20 @@ class VectorKind(Kind):
         return Verdict.wrong(
             f"{lead} Wrong {word}: {names}.{right}", score=score, wrong=_lists(result.wrong)
         )
+
+    def form(self, spec: ExerciseSpec, variant: Variant) -> dict[str, Any]:
+        """The shape comes from the reference answer (computed only when a face asks)."""
+        want = self.expected(spec, variant)
+        opts: NumericOptions = spec.options
+        if self.ndim == 1:
+            labels = list(opts.labels)[: len(want)]
+            return {
+                "type": "vector",
+                "length": len(want),
+                "units": opts.units or None,
+                "labels": labels,
+            }
+        return {"type": "matrix", "rows": len(want), "cols": len(want[0]) if want else 0}
 
     def _shape_words(self, shape: tuple[int, ...]) -> str:
         if len(shape) == 1:

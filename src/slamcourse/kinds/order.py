@@ -5,7 +5,7 @@ from __future__ import annotations
 import bisect
 import random
 from dataclasses import dataclass
-from typing import ClassVar
+from typing import Any, ClassVar
 
 from slamcourse.answers import parse_ids
 from slamcourse.course.model import ExerciseSpec, Variant
@@ -99,8 +99,9 @@ class OrderKind(Kind):
             shuffled = shuffled[1:] + shuffled[:1]
         return shuffled
 
-    def extra(self, spec: ExerciseSpec, variant: Variant) -> str:
-        return "\n".join(f"- **{it.id})** {it.text}" for it in self.display_order(spec, variant))
+    def form(self, spec: ExerciseSpec, variant: Variant) -> dict[str, Any]:
+        items = [{"id": it.id, "text": it.text} for it in self.display_order(spec, variant)]
+        return {"type": "order", "items": items}
 
     def how_to_answer(self, spec: ExerciseSpec, variant: Variant) -> str:
         return "Answer with the ids in order, first to last, e.g. `c a d b`."

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import os
 
+from slamcourse.course.loader import directive_id
 from slamcourse.render.math import _sanitize, latex_to_unicode, text_width
 
 __all__ = [
@@ -374,10 +375,10 @@ class _Markdown:
 
     def code(self, node: SyntaxTreeNode) -> list[str]:
         info = node.info.strip() if node.type == "fence" else ""
-        if info.split(None, 1)[:1] == ["{exercise}"]:
+        ex_id = directive_id(info)
+        if ex_id is not None:
             if self.exercise is None:
                 return []
-            ex_id = info[len("{exercise}") :].strip()
             text = self.exercise(ex_id)
             return text.rstrip("\n").splitlines() if text.strip() else []
         content = node.content.expandtabs(4).rstrip("\n")
