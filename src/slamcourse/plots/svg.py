@@ -36,7 +36,7 @@ def attrs(**kw: object) -> str:
     )
 
 
-def el(tag: str, body: str = "", **kw: object) -> str:
+def el(tag: str, body: str = "", /, **kw: object) -> str:
     a = attrs(**kw)
     head = f"<{tag} {a}" if a else f"<{tag}"
     return f"{head}>{body}</{tag}>" if body else f"{head}/>"
