@@ -652,7 +652,9 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
     )
     p.add_argument("--json", action="store_true")
     p = add("serve", cmd_serve, "the course in your browser, with instant feedback")
-    p.add_argument("--port", type=int, default=8765, metavar="P", help="port (default 8765)")
+    p.add_argument(
+        "--port", type=int, metavar="P", help="port (default 8765, or a free one if taken)"
+    )
     p.add_argument(
         "--host", default="127.0.0.1", metavar="H", help="address to bind (default 127.0.0.1)"
     )

@@ -23,6 +23,7 @@ if TYPE_CHECKING:
     from slamcourse.engine import Engine
 
 LOOPBACK = ("127.0.0.1", "localhost", "::1")
+DEFAULT_PORT = 8765
 
 
 def allowed_hosts(host: str, port: int) -> list[str]:
@@ -87,18 +88,24 @@ def serve(
     *,
     course: str | None,
     host: str,
-    port: int,
+    port: int | None,
     open_browser: bool,
     say: Callable[[str], None],
 ) -> int:
-    """Run until interrupted; returns the exit code."""
+    """Run until interrupted; returns the exit code. ``port`` None: 8765, or any free port
+    when that one is taken (an explicit port that is taken is an error)."""
     from slamcourse.engine import Engine
     from slamcourse.settings import Settings
 
     settings = Settings.from_env(course=course)
     with Engine.open(settings) as engine:
         engine.start_workers()
-        srv = make(engine, host=host, port=port)
+        try:
+            srv = make(engine, host=host, port=DEFAULT_PORT if port is None else port)
+        except UsageError:
+            if port is not None:
+                raise
+            srv = make(engine, host=host, port=0)
         if host not in LOOPBACK:
             say(
                 f"Warning: listening on {host}, not only this computer. Anyone who can reach it "
