@@ -47,7 +47,12 @@ def test_token_once_then_cookie(client: Any) -> None:
     assert page.status_code == 200
     assert "Content-Security-Policy" in page.headers
     assert "script-src 'self'" in page.headers["Content-Security-Policy"]
-    assert "<script>" not in page.get_data(as_text=True)  # no inline scripts
+    html = page.get_data(as_text=True)
+    assert "<script>" not in html  # no inline scripts
+    # the one style nonce (for the code editor's <style>) is fresh on every response
+    nonce = page.headers["Content-Security-Policy"].split("'nonce-")[1].split("'")[0]
+    assert f'name="slamcourse-style-nonce" content="{nonce}"' in html
+    assert nonce not in client.get("/chapter/basics").headers["Content-Security-Policy"]
 
 
 def test_foreign_host_is_refused(client: Any) -> None:

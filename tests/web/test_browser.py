@@ -110,7 +110,9 @@ def test_code_counterexample_and_script_shown_as_text(page: Any, live: Any) -> N
         "    print('<script>alert(1)</script>')\n"
         "    return '<script>alert(1)</script>'\n"
     )
-    sec.locator("[data-code]").fill(src)
+    editor = sec.locator(".cm-content")  # the vendored CodeMirror editor
+    assert editor.get_attribute("aria-label") == "Your Python code for range_bearing"
+    editor.fill(src)
     sec.locator("[data-check]").click()
     page.locator("#ex-basics--range-bearing .feedback.is-failed").wait_for(timeout=30_000)
     table = sec.locator(".counterexample")

@@ -16,12 +16,13 @@ only turns its results into HTML and JSON. Security model (docs/architecture.md,
 from __future__ import annotations
 
 import hmac
+import secrets
 from collections.abc import Iterable
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 from urllib.parse import urlencode
 
-from flask import Flask, Response, abort, jsonify, redirect, render_template, request, url_for
+from flask import Flask, Response, abort, g, jsonify, redirect, render_template, request, url_for
 from markupsafe import Markup
 
 from slamcourse.engine import Locked
@@ -36,10 +37,12 @@ if TYPE_CHECKING:
 MAX_BODY = 256 * 1024
 MAX_ANSWER = 64 * 1024
 CSP = (
-    "default-src 'none'; script-src 'self'; style-src 'self'; img-src 'self' data:; "
-    "font-src 'self'; connect-src 'self'; base-uri 'none'; form-action 'self'; "
-    "frame-ancestors 'none'"
+    "default-src 'none'; script-src 'self'; style-src 'self' 'nonce-{nonce}'; "
+    "img-src 'self' data:; font-src 'self'; connect-src 'self'; base-uri 'none'; "
+    "form-action 'self'; frame-ancestors 'none'"
 )
+"""The page's policy. The per-response style nonce is for the one ``<style>`` element the code
+editor (CodeMirror) injects; no script runs inline."""
 STATUS_MARK = {"solved": "✓", "given_up": "✗", "pending": "○"}
 STATUS_WORD = {"solved": "solved", "given_up": "given up", "pending": "open"}
 
@@ -71,6 +74,14 @@ def create_app(engine: Engine, *, token: str, hosts: Iterable[str]) -> Flask:
             return Response(_json({"error": message}), status=status, mimetype="application/json")
         html = render_template("refused.html", message=message)
         return Response(html, status=status, mimetype="text/html")
+
+    def style_nonce() -> str:
+        if "style_nonce" not in g:
+            g.style_nonce = secrets.token_urlsafe(16)
+        nonce: str = g.style_nonce
+        return nonce
+
+    app.jinja_env.globals["style_nonce"] = style_nonce
 
     @app.before_request
     def guard() -> BaseResponse | None:
@@ -105,7 +116,7 @@ def create_app(engine: Engine, *, token: str, hosts: Iterable[str]) -> Flask:
 
     @app.after_request
     def headers(resp: Response) -> Response:
-        resp.headers["Content-Security-Policy"] = CSP
+        resp.headers["Content-Security-Policy"] = CSP.format(nonce=style_nonce())
         resp.headers["X-Content-Type-Options"] = "nosniff"
         resp.headers["Referrer-Policy"] = "no-referrer"
         resp.headers["X-Frame-Options"] = "DENY"

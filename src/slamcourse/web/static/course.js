@@ -510,7 +510,13 @@
       exprInput.addEventListener("input", () => preview(exprInput, box));
     }
     const area = section.querySelector("[data-code]");
-    if (area) {
+    if (area && window.SlamEditor) {
+      // CodeMirror 6 (vendored): it keeps the textarea's value in sync, which is what is sent
+      const pre = section.querySelector("[data-gutter]");
+      pre.hidden = true;
+      const nonce = document.querySelector('meta[name="slamcourse-style-nonce"]');
+      window.SlamEditor.fromTextArea(area, area.getAttribute("aria-label"), nonce && nonce.content);
+    } else if (area) {
       const pre = section.querySelector("[data-gutter]");
       gutter(area, pre);
       area.addEventListener("input", () => gutter(area, pre));
