@@ -98,6 +98,7 @@ def live(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Any]:
     with Engine.open(settings_for(tmp)) as eng, running(eng, token=TOKEN) as srv:
         eng.start_workers()  # as `slamcourse serve` does: a warm sandbox worker
         srv.engine = eng  # type: ignore[attr-defined]
+        srv.settings = eng.settings  # type: ignore[attr-defined]
         yield srv
 
 

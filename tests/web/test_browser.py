@@ -133,13 +133,22 @@ def test_progress_kept_on_reload(page: Any, live: Any) -> None:
     assert section(page, "basics/pick").locator("[data-explanation]").is_visible()
 
 
-def test_terminal_answer_shows_as_done(page: Any, live: Any) -> None:
-    engine: Engine = live.engine  # the terminal's engine on the same progress database
-    p = engine.pose("basics/count").variant.params
-    assert engine.submit("basics/count", str(3 + 2 * p["n"])).passed
+def test_terminal_answer_shows_as_done(
+    page: Any, live: Any, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """`slamcourse check` (the terminal face, its own engine) on the same progress database."""
+    from slamcourse.cli import main
+    from tests.conftest import FIXTURE_COURSE
+
+    monkeypatch.setenv("SLAMCOURSE_HOME", str(live.settings.home))
+    n = live.engine.pose("basics/count").variant.params["n"]
+    argv = ["--course", str(FIXTURE_COURSE), "check", "basics/count", "--answer", str(3 + 2 * n)]
+    assert main(argv) == 0
+    assert "passed" in capsys.readouterr().out
     open_chapter(page, live)
     assert "solved" in section(page, "basics/count").locator("[data-badge]").inner_text()
     assert "solved" in page.locator('[data-status-of="basics/count"]').inner_text()
+    assert section(page, "basics/count").locator("[data-explanation]").is_visible()
 
 
 def test_request_without_token_refused(live: Any) -> None:
