@@ -57,6 +57,20 @@ def test_observation_geometry_range_and_wrapped_bearing() -> None:
     assert f"φ = {num(phi)} rad" in desc
 
 
+def test_open_exercises_get_no_answer_from_their_picture() -> None:
+    params = {"xr": 2.0, "yr": 3.0, "thr": 0.5, "xj": 5.0, "yj": 7.0}
+    tags = ("observation-model",)
+    shown = plot_for("observation/predicted-range", tags, params, solved=True)
+    hidden = plot_for("observation/predicted-range", tags, params, solved=False)
+    assert shown is not None and hidden is not None
+    assert "r = 5 m" in shown and "r = 5 m" not in hidden and "r = ?" in hidden
+    assert "φ = ?" in hidden and "r = 5 m" not in parsed(hidden)[2]
+    # a picture that is the answer (a count of fill-in cells) waits for the solve
+    assert plot_for("factor-graphs/star-fill-in", (), {"leaves": 4}, solved=False) is None
+    assert plot_for("factor-graphs/star-fill-in", (), {"leaves": 4}, solved=True) is not None
+    assert plot_for("drift/systematic-drift", (), {"steps": 10, "bias": 0.1}, solved=False) is None
+
+
 def test_elimination_fill_in() -> None:
     chain = [(i, i + 1) for i in range(4)]
     assert eliminate(5, chain, range(5))[1] == set()  # a chain eliminated in order: no fill-in
@@ -106,10 +120,12 @@ def test_every_registered_picture_draws_from_the_bundled_course(tmp_path: Path) 
         spec = course.exercise(ex_id)
         for seed in (0, 1):
             params = dict(variant(spec, seed).params)
-            svg = plot_for(ex_id, spec.tags, params)
+            svg = plot_for(ex_id, spec.tags, params, solved=True)
             assert (svg is not None) == has_plot(ex_id, spec.tags, params)
             if svg is not None:
                 parsed(svg)
                 drawn += 1
+                pending = plot_for(ex_id, spec.tags, params, solved=False)
+                assert pending is None or pending == svg or "?" in pending
     assert set(BY_ID) <= set(course.exercise_ids)
     assert drawn >= 2 * len(BY_ID)

@@ -19,11 +19,20 @@ from tests.conftest import FIXTURE_COURSE, REPO
 def test_plot_writes_the_learners_picture(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
-    out = tmp_path / "drift.svg"
-    assert main(["--course", str(REPO), "plot", "drift/systematic-drift", "--out", str(out)]) == 0
+    out = tmp_path / "range.svg"
+    course = ["--course", str(REPO)]
+    assert main([*course, "plot", "observation/predicted-range", "--out", str(out)]) == 0
     root = ET.fromstring(out.read_text())
     assert root.find("{http://www.w3.org/2000/svg}desc") is not None
+    assert "r = ?" in out.read_text()  # open exercise: its answer is not drawn
     assert "Wrote the picture" in capsys.readouterr().out
+    # a picture that shows the answer comes once the exercise is given up (or solved)
+    drift = [*course, "plot", "drift/systematic-drift", "--out", str(out)]
+    assert main(drift) == 2
+    assert "once the exercise is solved or given up" in capsys.readouterr().err
+    assert main([*course, "giveup", "drift/systematic-drift"]) == 0
+    assert main(drift) == 0
+    assert "believed" in out.read_text()
 
 
 def test_plot_of_an_exercise_without_one(capsys: pytest.CaptureFixture[str]) -> None:

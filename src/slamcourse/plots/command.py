@@ -19,13 +19,19 @@ def plot_command(
     with Engine.open(Settings.from_env(course=course)) as engine:
         prompt = engine.pose(exercise_id)
         spec = engine.exercise(exercise_id)
-        svg = plot_for(exercise_id, tuple(spec.tags), dict(prompt.variant.params))
+        solved = engine.state(exercise_id).status != "pending"
+        svg = plot_for(exercise_id, spec.tags, dict(prompt.variant.params), solved=solved)
+        if svg is None and has_plot(exercise_id, spec.tags, prompt.variant.params):
+            raise UsageError(
+                f"the picture of {exercise_id} shows its answer: it is drawn once the exercise "
+                "is solved or given up"
+            )
         if svg is None:
             with_pictures = [
                 ex
                 for ch in engine.chapters()
                 for ex in ch.exercise_ids
-                if has_plot(ex, tuple(engine.exercise(ex).tags), engine.variant(ex).params)
+                if has_plot(ex, engine.exercise(ex).tags, engine.variant(ex).params)
             ]
             raise UsageError(
                 f"{exercise_id} has no picture; these exercises have one: "

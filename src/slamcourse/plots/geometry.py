@@ -20,8 +20,17 @@ def wrap(angle: float) -> float:
     return math.pi if a == -math.pi else a
 
 
-def observation_geometry(xr: float, yr: float, thr: float, xj: float, yj: float) -> str:
-    """The robot (a triangle pointing along θ), the landmark, and the measured r and φ."""
+def _side(x: float) -> str:
+    """Text anchor that keeps a label near ``x`` (px) inside the picture."""
+    return "start" if x < W / 3 else "end" if x > 2 * W / 3 else "middle"
+
+
+def observation_geometry(
+    xr: float, yr: float, thr: float, xj: float, yj: float, *, show_results: bool = True
+) -> str:
+    """The robot (a triangle pointing along θ), the landmark, and the measured r and φ.
+
+    ``show_results`` False labels r and φ with "?" (an exercise asking for them is open)."""
     dx, dy = xj - xr, yj - yr
     r = math.hypot(dx, dy)
     phi = wrap(math.atan2(dy, dx) - thr)
@@ -70,7 +79,7 @@ def observation_geometry(xr: float, yr: float, thr: float, xj: float, yj: float)
         text(
             (rx + sx(xj)) / 2 + 10 * math.sin(bearing),
             (ry + sy(yj)) / 2 + 10 * math.cos(bearing),
-            f"r = {num(r)} m",
+            f"r = {num(r)} m" if show_results else "r = ?",
             fill="#1f6fb2",
             font_weight="bold",
         ),
@@ -85,13 +94,13 @@ def observation_geometry(xr: float, yr: float, thr: float, xj: float, yj: float)
         text(
             rx + (arc_r + 16) * math.cos(mid),
             ry - (arc_r + 16) * math.sin(mid),
-            f"φ = {num(phi)} rad",
+            f"φ = {num(phi)} rad" if show_results else "φ = ?",
             fill="#b3541e",
             font_weight="bold",
             text_anchor="start" if math.cos(mid) >= 0 else "end",
         ),
         el("polygon", points=" ".join(f"{fmt(x)},{fmt(y)}" for x, y in tri), fill="#222"),
-        text(rx - 10, ry + 24, f"robot ({num(xr)}, {num(yr)})", fill="#222"),
+        text(rx, ry + 24, f"robot ({num(xr)}, {num(yr)})", fill="#222", text_anchor=_side(rx)),
         el(
             "rect",
             x=sx(xj) - 6,
@@ -101,11 +110,22 @@ def observation_geometry(xr: float, yr: float, thr: float, xj: float, yj: float)
             fill="#2e7d32",
             transform=f"rotate(45 {fmt(sx(xj))} {fmt(sy(yj))})",
         ),
-        text(sx(xj) + 10, sy(yj) - 10, f"landmark ({num(xj)}, {num(yj)})", fill="#2e7d32"),
+        text(
+            sx(xj),
+            sy(yj) - 12,
+            f"landmark ({num(xj)}, {num(yj)})",
+            fill="#2e7d32",
+            text_anchor=_side(sx(xj)),
+        ),
     ]
     desc = (
-        f"The robot at ({num(xr)}, {num(yr)}) m faces {num(thr)} rad. The landmark at "
-        f"({num(xj)}, {num(yj)}) m is Δx = {num(dx)} m, Δy = {num(dy)} m away: range "
-        f"r = {num(r)} m and bearing φ = {num(phi)} rad relative to the heading."
+        f"The robot at ({num(xr)}, {num(yr)}) m faces {num(thr)} rad. The landmark is at "
+        f"({num(xj)}, {num(yj)}) m. "
+        + (
+            f"It is Δx = {num(dx)} m, Δy = {num(dy)} m away: range r = {num(r)} m and bearing "
+            f"φ = {num(phi)} rad relative to the heading."
+            if show_results
+            else "The range r and the bearing φ are marked but not given."
+        )
     )
     return document(W, H, "Robot, landmark, range and bearing", desc, body)

@@ -8,11 +8,9 @@ named in a legend and in the description.
 
 from __future__ import annotations
 
-import itertools
+import hashlib
 from collections.abc import Iterable, Sequence
 from xml.sax.saxutils import escape, quoteattr
-
-_ids = itertools.count(1)
 
 
 def fmt(x: float) -> str:
@@ -52,8 +50,11 @@ def polyline(points: Iterable[tuple[float, float]], **kw: object) -> str:
 
 
 def document(width: float, height: float, title: str, desc: str, body: Sequence[str]) -> str:
-    """A standalone ``<svg>`` element with its text alternative (also valid inline in HTML)."""
-    n = next(_ids)
+    """A standalone ``<svg>`` element with its text alternative (also valid inline in HTML).
+
+    The ids its ``aria-labelledby`` names come from its content: the same numbers give the same
+    SVG, and two different pictures inlined in one page never share an id."""
+    n = hashlib.sha1("".join([title, desc, *body]).encode()).hexdigest()[:10]
     tid, did = f"plot-title-{n}", f"plot-desc-{n}"
     head = (
         f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {fmt(width)} {fmt(height)}" '

@@ -241,6 +241,7 @@ def create_app(engine: Engine, *, token: str, hosts: Iterable[str]) -> Flask:
         text = engine.give_up(exercise_id)
         return jsonify(
             {
+                "plot_svg": _plot(engine, engine.pose(exercise_id)),
                 "explanation": text,
                 "explanation_html": str(to_html(text)),
                 "exercise_status": engine.state(exercise_id).status,
@@ -283,10 +284,13 @@ def _exercise_url(engine: Engine, exercise_id: str) -> str:
 
 
 def _plot(engine: Engine, prompt: Prompt) -> str | None:
+    """The exercise's picture; one that shows the answer only once the learner's own exercise
+    is solved or given up (engine state), never for a pending one."""
     from slamcourse.plots.registry import plot_for
 
     spec = engine.exercise(prompt.exercise_id)
-    return plot_for(prompt.exercise_id, tuple(spec.tags), dict(prompt.variant.params))
+    solved = engine.state(prompt.exercise_id).status != "pending"
+    return plot_for(prompt.exercise_id, spec.tags, dict(prompt.variant.params), solved=solved)
 
 
 def _exercise_view(engine: Engine, exercise_id: str) -> dict[str, Any]:
@@ -320,6 +324,8 @@ def _result_json(engine: Engine, result: Result) -> dict[str, Any]:
     data["explanation_html"] = str(to_html(data["explanation"])) if data["explanation"] else None
     data["nudge_html"] = str(to_html(data["nudge"])) if data["nudge"] else None
     data["summary"] = engine.summary()
+    if result.verdict.passed and not result.practice:
+        data["plot_svg"] = _plot(engine, engine.pose(result.exercise_id))
     nxt = engine.next_exercise()
     data["next_url"] = _exercise_url(engine, nxt) if nxt and nxt != result.exercise_id else None
     return data

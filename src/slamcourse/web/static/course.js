@@ -208,12 +208,22 @@
     markCells(section, result);
     showTests(section, result);
     if (result.explanation_html) showExplanation(section, result.explanation_html);
+    showPlot(section, result.plot_svg);
     if (!result.practice) {
       setStatus(section, result.exercise_status);
       const at = section.querySelector("[data-attempts]");
       at.textContent = result.attempts + (result.attempts === 1 ? " attempt" : " attempts");
     }
     refreshSidebar(result.summary);
+  }
+
+  // Our own SVG (numbers and fixed labels, text escaped by the server) into the figure.
+  function showPlot(section, svg) {
+    if (!svg) return;
+    const fig = section.querySelector("[data-plot]");
+    const doc = new DOMParser().parseFromString(svg, "image/svg+xml");
+    fig.replaceChildren(document.importNode(doc.documentElement, true));
+    fig.hidden = false;
   }
 
   function showExplanation(section, html) {
@@ -549,6 +559,7 @@
       const r = await post(api("giveup", id), {});
       if (r.error) return showResult(section, r);
       showExplanation(section, r.explanation_html);
+      showPlot(section, r.plot_svg);
       setStatus(section, r.exercise_status);
       refreshSidebar(r.summary);
     });
@@ -557,12 +568,7 @@
       practice.addEventListener("change", async function () {
         const data = await get(api("exercise", id) + (practice.checked ? "?canonical=1" : ""));
         setHTML(section.querySelector("[data-prompt]"), data.text_html);
-        const fig = section.querySelector("[data-plot]");
-        if (data.plot_svg) {
-          const doc = new DOMParser().parseFromString(data.plot_svg, "image/svg+xml");
-          fig.replaceChildren(document.importNode(doc.documentElement, true));
-          fig.hidden = false;
-        }
+        showPlot(section, data.plot_svg);
         section.classList.toggle("practising", practice.checked);
         announce(section, practice.checked
           ? "Showing the lesson's own numbers: answers are graded but not counted."
