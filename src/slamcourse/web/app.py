@@ -147,7 +147,7 @@ def create_app(engine: Engine, *, token: str, hosts: Iterable[str]) -> Flask:
         return render_template(
             "home.html",
             chapters=engine.chapters(),
-            next_id=nxt,
+            next_title=engine.exercise(nxt).title if nxt else None,
             next_url=_exercise_url(engine, nxt) if nxt else None,
             **sidebar(None),
         )
