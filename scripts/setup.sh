@@ -9,9 +9,10 @@ need=()
 command -v "$PY" >/dev/null 2>&1 || need+=(python3)
 command -v bwrap >/dev/null 2>&1 || need+=(bubblewrap)          # the learner-code sandbox
 "$PY" -c "import ensurepip, venv" >/dev/null 2>&1 || need+=(python3-venv)
-for pkg in ${APT_EXTRA:-}; do                                   # e.g. chromium for browser tests
-  command -v "$pkg" >/dev/null 2>&1 || need+=("$pkg")
-done
+# browser tests: Playwright drives Debian's chromium (never `playwright install`)
+case "${EXTRAS:-}" in
+  *test*) command -v chromium >/dev/null 2>&1 || need+=(chromium) ;;
+esac
 if [ "${#need[@]}" -gt 0 ] && command -v apt-get >/dev/null 2>&1; then
   echo "==> apt-get install ${need[*]}" >&2
   $SUDO apt-get update -qq

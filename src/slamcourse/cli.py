@@ -566,6 +566,26 @@ def requested_command(argv: Sequence[str]) -> str | None:
     return None
 
 
+def cmd_serve(args: argparse.Namespace, out: Out) -> int:
+    from slamcourse.web.server import serve
+
+    return serve(
+        course=args.course,
+        host=args.host,
+        port=args.port,
+        open_browser=not args.no_browser,
+        say=out.line,
+    )
+
+
+def cmd_plot(args: argparse.Namespace, out: Out) -> int:
+    from slamcourse.plots.command import plot_command
+
+    return plot_command(
+        course=args.course, exercise_id=args.exercise, out_file=args.out, say=out.line
+    )
+
+
 def _environment_help() -> str:
     from slamcourse.settings import ENVIRONMENT
 
@@ -691,6 +711,17 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
         help="(re)write each code exercise's shipped recording of test inputs first",
     )
     p.add_argument("--json", action="store_true")
+    p = add("serve", cmd_serve, "the course in your browser, with instant feedback")
+    p.add_argument(
+        "--port", type=int, metavar="P", help="port (default 8765, or a free one if taken)"
+    )
+    p.add_argument(
+        "--host", default="127.0.0.1", metavar="H", help="address to bind (default 127.0.0.1)"
+    )
+    p.add_argument("--no-browser", action="store_true", help="only print the address")
+    p = add("plot", cmd_plot, "write the picture of an exercise (your numbers) as SVG")
+    p.add_argument("exercise", metavar="ID")
+    p.add_argument("--out", metavar="FILE.svg", help="write to FILE.svg (default: stdout)")
     return parser
 
 
@@ -709,6 +740,8 @@ _COMMANDS = frozenset(
         "watch",
         "doctor",
         "validate",
+        "serve",
+        "plot",
     }
 )
 

@@ -1,0 +1,138 @@
+"""Which exercise gets which picture, drawn from that exercise's own numbers.
+
+A picture is chosen by exercise id (``BY_ID``) or, failing that, by a tag together with the
+parameter names the picture needs (``BY_TAG``). Each entry maps the variant's parameters
+(a dict, the learner's own numbers) to an SVG string. A picture never gives an answer away:
+one that would is shown only once the exercise is solved or given up (``after_solving``), and
+others draw their derived figures as "?" until then. Code exercises have no variant
+parameters; their entries draw the lesson's own numbers (the exercise's first documented
+example). See docs/authoring.md, "Pictures".
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Iterable, Mapping
+from dataclasses import dataclass
+from typing import Any
+
+from slamcourse.plots.drift import drift_trajectories
+from slamcourse.plots.geometry import observation_geometry
+from slamcourse.plots.occupancy import occupancy_grid, occupancy_ray
+from slamcourse.plots.sparsity import MAX_N, information_sparsity
+
+Params = Mapping[str, Any]
+Plot = Callable[[Params], str]
+
+
+def _logit(p: float) -> float:
+    return math.log(p / (1.0 - p))
+
+
+def _chain(params: Params) -> str:
+    total = int(params["num_poses"])
+    n = min(total, 12)
+    edges = [(i, i + 1) for i in range(n - 1)]
+    return information_sparsity(n, edges, of_total=total)
+
+
+def _star(params: Params) -> str:
+    leaves = min(int(params["leaves"]), MAX_N - 1)
+    # the hub (variable 0) is eliminated first: every pair of leaves becomes linked
+    return information_sparsity(leaves + 1, [(0, k) for k in range(1, leaves + 1)], order=[0])
+
+
+def _geometry(params: Params, show_results: bool) -> str:
+    return observation_geometry(
+        float(params["xr"]),
+        float(params["yr"]),
+        float(params["thr"]),
+        float(params["xj"]),
+        float(params["yj"]),
+        show_results=show_results,
+    )
+
+
+_BEAMS = [(7, 1), (7, 3), (6, 5), (3, 5), (7, 2)]
+
+
+def _grid(l_occ: float, l_free: float) -> str:
+    return occupancy_grid(8, 6, (1, 3), _BEAMS, l_occ, l_free)
+
+
+@dataclass(frozen=True)
+class Picture:
+    """``draw(params, show_results)`` → SVG. ``after_solving``: the picture shows the answer
+    itself (a count of cells, a value), so it appears only once the exercise is solved or given
+    up; other pictures hide their derived figures (``show_results`` False) until then."""
+
+    draw: Callable[[Params, bool], str]
+    after_solving: bool = False
+
+
+def _given(draw: Plot) -> Picture:
+    """A picture of the givens only: nothing in it is an answer."""
+    return Picture(lambda p, _: draw(p))
+
+
+def _answer(draw: Plot) -> Picture:
+    return Picture(lambda p, _: draw(p), after_solving=True)
+
+
+BY_ID: dict[str, Picture] = {
+    "drift/systematic-drift": _answer(
+        lambda p: drift_trajectories(int(p["steps"]), bias=p["bias"])
+    ),
+    "drift/random-drift": _answer(lambda p: drift_trajectories(int(p["steps"]), sigma=p["sigma"])),
+    # code exercises: the lesson's numbers (their first example); code is not graded by a number
+    "drift/heading-drift": _given(
+        lambda p: drift_trajectories(100, step_length=0.5, heading_rate=0.01)
+    ),
+    "drift/random-walk": _given(lambda p: drift_trajectories(400, sigma=0.05)),
+    "graph/chain-sparsity": _given(_chain),  # 12 poses drawn; the answer is for thousands
+    "graph/omega-nonzeros": _answer(_chain),
+    "factor-graphs/star-fill-in": _answer(_star),
+    "factor-graphs/fill-in": _given(
+        lambda p: information_sparsity(5, [(0, 1), (1, 2), (2, 3), (3, 4)], order=[2, 0, 1, 3, 4])
+    ),
+    "observation/observation-model": _given(
+        lambda p: observation_geometry(2, 3, math.pi / 4, 5, 7)
+    ),
+    # an inverse sensor model that trusts "occupied" with p and "free" with the same p
+    "occupancy/log-odds-value": _answer(lambda p: _grid(_logit(p["p"]), -_logit(p["p"]))),
+    "occupancy/two-readings": _answer(lambda p: _grid(_logit(p["p1"]), _logit(p["p2"]))),
+    "occupancy/log-odds-update": _given(lambda p: _grid(_logit(0.9), _logit(0.3))),
+    "occupancy/ray-update": _given(
+        lambda p: occupancy_ray([1.0, -0.5, 0.2, 2.0, 0.0], 3, 0.85, -0.4)
+    ),
+}
+
+BY_TAG: list[tuple[str, frozenset[str], Picture]] = [
+    # range and bearing are what these exercises ask: "?" until solved
+    ("observation-model", frozenset({"xr", "yr", "thr", "xj", "yj"}), Picture(_geometry)),
+]
+
+
+def _picture(exercise_id: str, tags: Iterable[str], params: Params) -> Picture | None:
+    picture = BY_ID.get(exercise_id)
+    if picture is None:
+        tagset = set(tags)
+        for tag, needs, candidate in BY_TAG:
+            if tag in tagset and needs <= params.keys():
+                return candidate
+    return picture
+
+
+def plot_for(exercise_id: str, tags: Iterable[str], params: Params, *, solved: bool) -> str | None:
+    """The SVG picture of this exercise's variant, or None when it has none (yet).
+
+    ``solved``: the exercise is solved or given up, so the picture may show its answer."""
+    picture = _picture(exercise_id, tags, params)
+    if picture is None or (picture.after_solving and not solved):
+        return None
+    return picture.draw(params, solved)
+
+
+def has_plot(exercise_id: str, tags: Iterable[str], params: Params) -> bool:
+    """Whether the exercise has a picture (perhaps only once solved)."""
+    return _picture(exercise_id, tags, params) is not None
