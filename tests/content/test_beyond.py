@@ -1,0 +1,105 @@
+"""Content tests for the chapters beyond the lesson (``se2`` onwards).
+
+1. canonical answers pinned by hand, independently of the reference code;
+2. every code exercise's mutants (``exercises/<chapter>/mutants/<slug>/NN-name.py``, first line
+   ``# mistake: …``) fail, and its variants (``variants/<slug>/NN-name.py``, first line
+   ``# method: …``) pass, graded through the real sandbox exactly as ``slamcourse check`` does.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import math
+from pathlib import Path
+from types import ModuleType
+
+import pytest
+
+from slamcourse.course.loader import load_course
+from slamcourse.course.locate import bundled_course_root
+from slamcourse.kinds import get_kind
+
+ROOT = Path(__file__).resolve().parents[2]
+CHAPTERS = ("se2",)
+SLOW_EXERCISES: set[str] = set()
+COURSE = load_course(bundled_course_root())
+
+
+def load_reference(chapter: str) -> ModuleType:
+    path = ROOT / "exercises" / chapter / "reference.py"
+    spec = importlib.util.spec_from_file_location(f"_ref_beyond_{chapter.replace('-', '_')}", path)
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+se2 = load_reference("se2")
+
+
+# --- 1. canonical answers ---------------------------------------------------------------------
+
+
+def test_se2_canonical_answers() -> None:
+    assert se2.wrapped(a=5.5) == pytest.approx(5.5 - 2 * math.pi)
+    assert se2.mistake_wrap_zero_to_two_pi(a=5.5) == pytest.approx(5.5)
+    # (1, 0, π/2) ⊕ (1, 0, π/4): one metre along the robot's x, which points along the world's y
+    assert se2.composed(xa=1, ya=0, ta=math.pi / 2, xb=1, yb=0, tb=math.pi / 4) == pytest.approx(
+        [1, 1, 3 * math.pi / 4]
+    )
+    assert se2.inverted(x=2, y=1, t=math.pi / 2) == pytest.approx([-1, 2, -math.pi / 2])
+    assert se2.relative(xa=1, ya=1, ta=math.pi / 2, xb=1, yb=3, tb=math.pi) == pytest.approx(
+        [2, 0, math.pi / 2]
+    )
+    assert se2.wrap_angle(-math.pi) == math.pi
+
+
+# --- 2. mutants fail, variants pass -----------------------------------------------------------
+
+
+def _cases(group: str) -> list[object]:
+    cases = []
+    for chapter in CHAPTERS:
+        base = ROOT / "exercises" / chapter / group
+        for folder in sorted(p for p in base.iterdir() if p.is_dir()):
+            exercise = f"{chapter}/{folder.name}"
+            marks = [pytest.mark.slow] if exercise in SLOW_EXERCISES else []
+            for path in sorted(folder.glob("*.py")):
+                cases.append(
+                    pytest.param(exercise, path, id=f"{exercise}/{path.stem}", marks=marks)
+                )
+    return cases
+
+
+def _grade(exercise: str, path: Path) -> object:
+    spec = COURSE.exercise(exercise)
+    return get_kind("code").check_source(spec, path.read_text(encoding="utf-8"), path.name)
+
+
+def test_every_code_exercise_has_enough_mutants_and_variants() -> None:
+    for chapter in CHAPTERS:
+        folder = ROOT / "exercises" / chapter
+        for yaml_path in sorted(folder.glob("*.yaml")):
+            if "kind: code" not in yaml_path.read_text(encoding="utf-8"):
+                continue
+            slug = yaml_path.stem
+            mutants = sorted((folder / "mutants" / slug).glob("*.py"))
+            variants = sorted((folder / "variants" / slug).glob("*.py"))
+            assert len(mutants) >= 8, f"{chapter}/{slug}: {len(mutants)} mutants"
+            assert len(variants) >= 3, f"{chapter}/{slug}: {len(variants)} variants"
+            for path in mutants:
+                assert path.read_text(encoding="utf-8").startswith("# mistake: "), path
+            for path in variants:
+                assert path.read_text(encoding="utf-8").startswith("# method: "), path
+
+
+@pytest.mark.parametrize(("exercise", "path"), _cases("mutants"))
+def test_mutant_is_rejected(exercise: str, path: Path) -> None:
+    verdict = _grade(exercise, path)
+    assert verdict.status in ("failed", "timeout"), verdict.feedback  # type: ignore[attr-defined]
+
+
+@pytest.mark.parametrize(("exercise", "path"), _cases("variants"))
+def test_variant_is_accepted(exercise: str, path: Path) -> None:
+    verdict = _grade(exercise, path)
+    assert verdict.passed, verdict.feedback  # type: ignore[attr-defined]
