@@ -143,7 +143,9 @@ def information_from_upper(values: Sequence[float]) -> NDArray[np.float64]:
 
 
 def parse_g2o(text: str) -> PoseGraph:
-    """A 2-D g2o file: ``VERTEX_SE2 id x y θ`` and ``EDGE_SE2 i j dx dy dθ I11 I12 I13 I22 I23 I33``.
+    """Read a 2-D g2o file.
+
+    Records: ``VERTEX_SE2 id x y θ`` and ``EDGE_SE2 i j dx dy dθ I11 I12 I13 I22 I23 I33``.
 
     Vertex ids must be 0…n−1 (in any order). Blank lines and other record types are skipped.
     """
@@ -158,7 +160,12 @@ def parse_g2o(text: str) -> PoseGraph:
         elif fields[0] == "EDGE_SE2":
             z = (float(fields[3]), float(fields[4]), float(fields[5]))
             edges.append(
-                Edge(int(fields[1]), int(fields[2]), z, information_from_upper(fields[6:12]))
+                Edge(
+                    int(fields[1]),
+                    int(fields[2]),
+                    z,
+                    information_from_upper([float(v) for v in fields[6:12]]),
+                )
             )
     poses = np.array([vertices[k] for k in range(len(vertices))], dtype=float).reshape(-1, 3)
     return PoseGraph(poses, tuple(edges))
@@ -167,7 +174,7 @@ def parse_g2o(text: str) -> PoseGraph:
 def before_after(
     text: str, iterations: int = 10
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """For plotting: the initial poses of a g2o graph and the poses after Gauss-Newton (n×3 each).
+    """For plotting: a g2o graph's initial poses and its poses after Gauss-Newton (n×3 each).
 
     Pose 0 is held fixed, so both trajectories share its frame and can be drawn on one figure.
     """
