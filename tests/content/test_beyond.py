@@ -20,7 +20,7 @@ from slamcourse.course.locate import bundled_course_root
 from slamcourse.kinds import get_kind
 
 ROOT = Path(__file__).resolve().parents[2]
-CHAPTERS = ("se2",)
+CHAPTERS = ("se2", "motion")
 SLOW_EXERCISES: set[str] = set()
 COURSE = load_course(bundled_course_root())
 
@@ -35,6 +35,7 @@ def load_reference(chapter: str) -> ModuleType:
 
 
 se2 = load_reference("se2")
+motion = load_reference("motion")
 
 
 # --- 1. canonical answers ---------------------------------------------------------------------
@@ -52,6 +53,28 @@ def test_se2_canonical_answers() -> None:
         [2, 0, math.pi / 2]
     )
     assert se2.wrap_angle(-math.pi) == math.pi
+
+
+def test_motion_canonical_answers() -> None:
+    # turn 0.3 from π/4, drive 1.5 m along π/4 + 0.3, turn −0.2
+    h = math.pi / 4 + 0.3
+    assert motion.step_value(x=2, y=1, t=math.pi / 4, rot1=0.3, trans=1.5, rot2=-0.2) == (
+        pytest.approx([2 + 1.5 * math.cos(h), 1 + 1.5 * math.sin(h), h - 0.2])
+    )
+    # Σ'_yy = 0.01 + 2²·0.004 + 2²·0.003
+    assert motion.lateral_variance(trans=2, var_y=0.01, var_t=0.004, var_rot1=0.003) == (
+        pytest.approx(0.038)
+    )
+    # straight along +x: forward variance grows only by M_trans, heading by M_rot1 + M_rot2
+    cov = motion.predict_covariance(
+        pose=[0, 0, 0],
+        u=[0, 2, 0],
+        sigma=[[0.01, 0, 0], [0, 0.01, 0], [0, 0, 0.004]],
+        motion_cov=[[0.003, 0, 0], [0, 0.02, 0], [0, 0, 0.001]],
+    )
+    assert cov[0][0] == pytest.approx(0.03)
+    assert cov[2][2] == pytest.approx(0.008)
+    assert cov[1][2] == pytest.approx(2 * 0.004 + 2 * 0.003)
 
 
 # --- 2. mutants fail, variants pass -----------------------------------------------------------

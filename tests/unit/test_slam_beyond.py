@@ -13,7 +13,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from slamcourse.slam import se2
+from slamcourse.slam import ekf, se2
 
 FAST = settings(max_examples=150, deadline=None)
 coord = st.floats(-20.0, 20.0, allow_nan=False, allow_infinity=False)
@@ -86,3 +86,44 @@ def test_inverse_is_a_two_sided_inverse(a: se2.Pose) -> None:
 def test_between_is_invariant_under_a_global_motion(g: se2.Pose, a: se2.Pose, b: se2.Pose) -> None:
     moved = se2.between(se2.compose(g, a), se2.compose(g, b))
     assert close_pose(moved, se2.between(a, b), 1e-8)
+
+
+# --- ekf --------------------------------------------------------------------------------------
+
+turns = st.floats(-math.pi, math.pi, allow_nan=False, allow_infinity=False)
+motions = st.tuples(turns, st.floats(0.0, 5.0, allow_nan=False, allow_infinity=False), turns)
+
+
+@FAST
+@given(poses, motions)
+def test_motion_jacobians_match_central_differences(pose: se2.Pose, u: se2.Pose) -> None:
+    g = ekf.jacobian_state(pose, u)
+    v = ekf.jacobian_control(pose, u)
+    g_num = ekf.numerical_jacobian(lambda p: ekf.odometry_step(p, u), pose)
+    v_num = ekf.numerical_jacobian(lambda q: ekf.odometry_step(pose, q), u)
+    assert np.allclose(g, g_num, atol=1e-7)
+    assert np.allclose(v, v_num, atol=1e-7)
+
+
+@FAST
+@given(poses, motions)
+def test_odometry_step_is_a_composition(pose: se2.Pose, u: se2.Pose) -> None:
+    rot1, trans, rot2 = u
+    composed = se2.compose(se2.compose(pose, (0.0, 0.0, rot1)), (trans, 0.0, rot2))
+    assert close_pose(ekf.odometry_step(pose, u), composed, 1e-9)
+
+
+def test_prediction_keeps_the_covariance_symmetric_positive_definite() -> None:
+    rng = np.random.default_rng(7)
+    for _ in range(50):
+        a = rng.normal(size=(3, 3))
+        b = rng.normal(size=(3, 3)) * 0.1
+        sigma, m = a @ a.T + 1e-3 * np.eye(3), b @ b.T + 1e-4 * np.eye(3)
+        pose = tuple(rng.uniform(-5, 5, size=3))
+        u = (rng.uniform(-1, 1), rng.uniform(0, 3), rng.uniform(-1, 1))
+        _, cov = ekf.predict(pose, sigma, u, m)
+        assert np.allclose(cov, cov.T)
+        assert np.linalg.eigvalsh(cov).min() > 0
+        g = ekf.jacobian_state(pose, u)
+        # the motion's noise only adds uncertainty to what G carries over
+        assert np.linalg.eigvalsh(cov - g @ sigma @ g.T).min() > -1e-12
