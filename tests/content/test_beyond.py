@@ -13,6 +13,7 @@ import math
 from pathlib import Path
 from types import ModuleType
 
+import numpy as np
 import pytest
 
 from slamcourse.course.loader import load_course
@@ -20,8 +21,9 @@ from slamcourse.course.locate import bundled_course_root
 from slamcourse.kinds import get_kind
 
 ROOT = Path(__file__).resolve().parents[2]
-CHAPTERS = ("se2", "motion")
-SLOW_EXERCISES: set[str] = set()
+CHAPTERS = ("se2", "motion", "pose-graph")
+# graded on whole optimisations: several seconds per file
+SLOW_EXERCISES = {"pose-graph/gauss-newton"}
 COURSE = load_course(bundled_course_root())
 
 
@@ -36,6 +38,7 @@ def load_reference(chapter: str) -> ModuleType:
 
 se2 = load_reference("se2")
 motion = load_reference("motion")
+pose_graph = load_reference("pose-graph")
 
 
 # --- 1. canonical answers ---------------------------------------------------------------------
@@ -75,6 +78,25 @@ def test_motion_canonical_answers() -> None:
     assert cov[0][0] == pytest.approx(0.03)
     assert cov[2][2] == pytest.approx(0.008)
     assert cov[1][2] == pytest.approx(2 * 0.004 + 2 * 0.003)
+
+
+def test_pose_graph_canonical_answers() -> None:
+    # x_i = (0, 0, 0.5), x_j = (1.1, 0.9, 1.6), z = (1, 1, π/2): rotate the offset by −0.5, subtract
+    # z's translation, rotate by −π/2 (which maps (u, v) to (v, −u))
+    c, s = math.cos(0.5), math.sin(0.5)
+    u, v = c * 1.1 + s * 0.9 - 1, -s * 1.1 + c * 0.9 - 1
+    e = pose_graph.error_value(
+        xi=0, yi=0, ti=0.5, xj=1.1, yj=0.9, tj=1.6, zx=1, zy=1, zt=math.pi / 2
+    )
+    assert e == pytest.approx([v, -u, 1.1 - math.pi / 2])
+    # 100·0.1² + 100·0.05² + 400·0.02²
+    assert pose_graph.edge_chi2(ex=0.1, ey=-0.05, et=0.02, wxy=100, wt=400) == pytest.approx(1.41)
+    for n in (3, 4, 9):
+        assert pose_graph.hessian_rank(n=n) == 3 * n - 3
+    # the two-pose example: pose 1 ends exactly at the measurement, seen from pose 0
+    edges = [[0, 1, [1.0, 0.5, 0.6], [[10.0, 1.0, 0.0], [1.0, 10.0, 0.0], [0.0, 0.0, 50.0]]]]
+    rel = pose_graph.gauss_newton(poses=[[3, -2, 2], [3.5, -1, 2.8]], edges=edges, iterations=10)
+    assert np.allclose(rel, [[0, 0, 0], [1.0, 0.5, 0.6]], atol=1e-9)
 
 
 # --- 2. mutants fail, variants pass -----------------------------------------------------------

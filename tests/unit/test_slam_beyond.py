@@ -13,7 +13,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from slamcourse.slam import ekf, se2
+from slamcourse.slam import ekf, posegraph, se2
 
 FAST = settings(max_examples=150, deadline=None)
 coord = st.floats(-20.0, 20.0, allow_nan=False, allow_infinity=False)
@@ -127,3 +127,104 @@ def test_prediction_keeps_the_covariance_symmetric_positive_definite() -> None:
         g = ekf.jacobian_state(pose, u)
         # the motion's noise only adds uncertainty to what G carries over
         assert np.linalg.eigvalsh(cov - g @ sigma @ g.T).min() > -1e-12
+
+
+# --- posegraph --------------------------------------------------------------------------------
+
+measurements = st.tuples(
+    st.floats(-5.0, 5.0, allow_nan=False, allow_infinity=False),
+    st.floats(-5.0, 5.0, allow_nan=False, allow_infinity=False),
+    heading,
+)
+
+
+@FAST
+@given(poses, poses, measurements)
+def test_edge_jacobians_match_central_differences(xi: se2.Pose, xj: se2.Pose, z: se2.Pose) -> None:
+    a, b = posegraph.edge_jacobians(xi, xj, z)
+    a_num = ekf.numerical_jacobian(lambda p: posegraph.edge_error(p, xj, z), xi)
+    b_num = ekf.numerical_jacobian(lambda p: posegraph.edge_error(xi, p, z), xj)
+    assert np.allclose(a, a_num, atol=1e-6)
+    assert np.allclose(b, b_num, atol=1e-6)
+
+
+@FAST
+@given(poses, poses, measurements)
+def test_edge_error_vanishes_on_agreement_and_matches_matrices(
+    xi: se2.Pose, xj: se2.Pose, z: se2.Pose
+) -> None:
+    assert np.allclose(posegraph.edge_error(xi, se2.compose(xi, z), z), 0, atol=1e-9)
+    product = np.linalg.inv(se2.to_matrix(z)) @ np.linalg.inv(se2.to_matrix(xi)) @ se2.to_matrix(xj)
+    assert close_pose(tuple(posegraph.edge_error(xi, xj, z)), se2.from_matrix(product), 1e-8)
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.integers(2, 10), st.integers(0, 3), poses)
+def test_chi2_is_invariant_under_a_global_motion_and_h_has_a_3d_null_space(
+    seed: int, n: int, loops: int, g: se2.Pose
+) -> None:
+    x, edges = posegraph.simulate(seed, n, loops)
+    moved = np.array([se2.compose(g, p) for p in x])
+    assert posegraph.chi2(moved, edges) == pytest.approx(posegraph.chi2(x, edges), rel=1e-9)
+    h, _ = posegraph.linear_system(x, edges)
+    eigenvalues = np.linalg.eigvalsh(h)
+    assert np.sum(np.abs(eigenvalues) < 1e-8 * eigenvalues.max()) == 3
+    assert np.linalg.matrix_rank(h[3:, 3:]) == 3 * n - 3  # anchoring pose 0 removes it
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.integers(2, 10), st.integers(0, 3), poses)
+def test_gauss_newton_converges_to_a_stationary_point_whatever_the_gauge(
+    seed: int, n: int, loops: int, g: se2.Pose
+) -> None:
+    x, edges = posegraph.simulate(seed, n, loops)
+    optimised, history = posegraph.gauss_newton(x, edges, 10)
+    assert history[-1] <= history[0] + 1e-9
+    _, grad = posegraph.linear_system(optimised, edges)
+    assert np.abs(grad).max() < 1e-6 * max(1.0, history[0])
+    # the same graph placed elsewhere in the world, and anchored at its last pose instead
+    moved = np.array([se2.compose(g, p) for p in x])
+    other, _ = posegraph.gauss_newton(moved, edges, 10, anchor=n - 1)
+    assert np.allclose(
+        posegraph.relative_to_first(other), posegraph.relative_to_first(optimised), atol=1e-7
+    )
+
+
+def test_dense_and_sparse_systems_agree() -> None:
+    x, edges = posegraph.simulate(3, 8, 3)
+    h, b = posegraph.linear_system(x, edges)
+    slow_h, slow_b = np.zeros_like(h), np.zeros_like(b)
+    for edge in edges:
+        e = posegraph.edge_error(x[edge.i], x[edge.j], edge.z)
+        a, bj = posegraph.edge_jacobians(x[edge.i], x[edge.j], edge.z)
+        jac = np.zeros((3, len(b)))
+        jac[:, 3 * edge.i : 3 * edge.i + 3] = a
+        jac[:, 3 * edge.j : 3 * edge.j + 3] = bj
+        slow_h += jac.T @ edge.information @ jac
+        slow_b += jac.T @ edge.information @ e
+    assert np.allclose(h, slow_h) and np.allclose(b, slow_b)
+    step = posegraph.gauss_newton_step(x, edges)
+    dense = np.linalg.solve(h[3:, 3:], -b[3:])
+    assert np.allclose(step[1:, :2], x[1:, :2] + dense.reshape(-1, 3)[:, :2])
+
+
+def test_toy_graphs_reach_their_known_chi2() -> None:
+    for text, start, end in ((NOISY_TOY, 0.783275, 0.136652),):
+        graph = posegraph.parse_g2o(text)
+        _, history = posegraph.gauss_newton(graph.poses, graph.edges, 5)
+        assert history[0] == pytest.approx(start, abs=1e-6)
+        assert history[-1] == pytest.approx(end, abs=1e-6)
+
+
+# GTSAM examples/Data/noisyToyGraph.txt (BSD licence, Georgia Tech Research Corporation)
+NOISY_TOY = """\
+VERTEX_SE2 0 0.000000 0.000000 0.000000
+VERTEX_SE2 1 0.774115 1.183389 1.576173
+VERTEX_SE2 2 -0.262420 2.047059 -3.127594
+VERTEX_SE2 3 -1.605649 0.993891 -1.561134
+EDGE_SE2 0 1 0.774115 1.183389 1.576173 1.000000 0.000000 0.000000 1.000000 0.000000 1.000000
+EDGE_SE2 1 2 0.869231 1.031877 1.579418 1.000000 0.000000 0.000000 1.000000 0.000000 1.000000
+EDGE_SE2 2 3 1.357840 1.034262 1.566460 1.000000 0.000000 0.000000 1.000000 0.000000 1.000000
+EDGE_SE2 2 0 0.303492 1.865011 -3.113898 1.000000 0.000000 0.000000 1.000000 0.000000 1.000000
+EDGE_SE2 0 3 -0.928526 0.993695 -1.563542 1.000000 0.000000 0.000000 1.000000 0.000000 1.000000
+"""
