@@ -160,8 +160,8 @@ def gauss_newton_step(
     ``H`` is assembled and factorised as a sparse matrix (scipy), so that a graph of a few
     thousand poses takes milliseconds; the result equals a dense solve.
     """
-    from scipy.sparse import csc_matrix
-    from scipy.sparse.linalg import spsolve
+    from scipy.sparse import csc_matrix  # type: ignore[import-untyped]
+    from scipy.sparse.linalg import spsolve  # type: ignore[import-untyped]
 
     x = np.array(poses, dtype=float)
     rows, cols, values, g = _system_entries(x, edges)
