@@ -21,9 +21,9 @@ from slamcourse.course.locate import bundled_course_root
 from slamcourse.kinds import get_kind
 
 ROOT = Path(__file__).resolve().parents[2]
-CHAPTERS = ("se2", "motion", "pose-graph")
+CHAPTERS = ("se2", "motion", "pose-graph", "intel")
 # graded on whole optimisations: several seconds per file
-SLOW_EXERCISES = {"pose-graph/gauss-newton"}
+SLOW_EXERCISES = {"pose-graph/gauss-newton", "intel/optimise-g2o"}
 COURSE = load_course(bundled_course_root())
 
 
@@ -39,6 +39,7 @@ def load_reference(chapter: str) -> ModuleType:
 se2 = load_reference("se2")
 motion = load_reference("motion")
 pose_graph = load_reference("pose-graph")
+intel = load_reference("intel")
 
 
 # --- 1. canonical answers ---------------------------------------------------------------------
@@ -97,6 +98,48 @@ def test_pose_graph_canonical_answers() -> None:
     edges = [[0, 1, [1.0, 0.5, 0.6], [[10.0, 1.0, 0.0], [1.0, 10.0, 0.0], [0.0, 0.0, 50.0]]]]
     rel = pose_graph.gauss_newton(poses=[[3, -2, 2], [3.5, -1, 2.8]], edges=edges, iterations=10)
     assert np.allclose(rel, [[0, 0, 0], [1.0, 0.5, 0.6]], atol=1e-9)
+
+
+def test_intel_figures() -> None:
+    """The published and re-measured INTEL numbers (curriculum research, section 5)."""
+    graph = intel.intel()
+    assert (len(graph.poses), len(graph.edges)) == (1228, 1483)
+    assert intel.loop_closures() == 256
+    assert intel.degrees_of_freedom() == 768
+    assert intel.initial_chi2() == pytest.approx(5149721.04, rel=1e-8)
+    # PythonRobotics' notebook, inverted error convention: 7191686.3825 → 215.8405
+    assert intel.mistake_initial_chi2_inverse_convention() == pytest.approx(7191686.3825, abs=1e-3)
+
+
+def test_intel_optimum() -> None:
+    assert intel.final_chi2() == pytest.approx(215.8302, abs=1e-4)
+    assert intel.mistake_final_chi2_inverse_convention() == pytest.approx(215.8405, abs=1e-4)
+    before, after = intel.before_after_demo()
+    assert len(before) == len(after) == 1228 and before[0] == after[0]
+
+
+def test_intel_windows_are_drawn_by_the_whole_capstone() -> None:
+    """The fixed seed of intel/optimise-g2o draws both pieces of the real building."""
+    from slamcourse.course import reference
+    from slamcourse.grading.properties import TrustedCallee, exercise_seed, run
+
+    spec = COURSE.exercise("intel/optimise-g2o")
+    opts = spec.options
+    ref = reference.function(spec, spec.reference or "", spec.reference_line)
+    windows = {intel.intel_window(150, 160), intel.intel_window(1060, 160)}
+    outcome = run(
+        strategy=get_kind("code").strategy(spec),
+        examples=opts.examples,
+        signature=opts.signature,
+        returns=opts.returns,
+        tolerance=opts.tolerance,
+        reference=lambda **kw: [[0.0]],  # only the drawn inputs matter here
+        call=TrustedCallee(lambda text, iterations: [[0.0]]).call,
+        max_examples=opts.max_examples,
+        seed=exercise_seed(spec.id),
+    )
+    assert ref is not None
+    assert windows <= {d["text"] for d in outcome.drawn}
 
 
 # --- 2. mutants fail, variants pass -----------------------------------------------------------

@@ -15,7 +15,7 @@ Conventions (those of g2o and of the Freiburg course, stated once for the whole 
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -32,6 +32,11 @@ class Edge:
     j: int
     z: tuple[float, float, float]
     information: NDArray[np.float64]  # 3×3, symmetric positive definite
+
+
+Stacked = tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]
+# errors (m×3), A and B (m×3×3) and informations (m×3×3) of all edges at the poses (n×3)
+ErrorModel = Callable[[NDArray[np.float64], Sequence[Edge]], Stacked]
 
 
 @dataclass(frozen=True)
@@ -71,18 +76,18 @@ def edge_jacobians(
     return a, b
 
 
-def chi2(poses: ArrayLike, edges: Sequence[Edge]) -> float:
-    """``Σ eᵀ Ω e`` over all edges (dimensionless)."""
+def chi2(poses: ArrayLike, edges: Sequence[Edge], model: ErrorModel | None = None) -> float:
+    """``Σ eᵀ Ω e`` over all edges (dimensionless); ``model`` defaults to :func:`stacked_errors`."""
     if not edges:
         return 0.0
-    e, _, _, om = _stacked(np.asarray(poses, dtype=float), edges)
+    e, _, _, om = (model or stacked_errors)(np.asarray(poses, dtype=float), edges)
     return float(np.einsum("ki,kij,kj->", e, om, e))
 
 
-def _stacked(
-    x: NDArray[np.float64], edges: Sequence[Edge]
-) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+def stacked_errors(x: NDArray[np.float64], edges: Sequence[Edge]) -> Stacked:
     """All edges at once: errors (m×3), Jacobians A and B (m×3×3) and informations (m×3×3).
+
+    ``x`` is the n×3 array of poses; the edges' order is kept.
 
     The same formulas as :func:`edge_error` and :func:`edge_jacobians`, vectorised over edges.
     """
@@ -127,7 +132,7 @@ def linear_system(
 
 
 def _system_entries(
-    poses: ArrayLike, edges: Sequence[Edge]
+    poses: ArrayLike, edges: Sequence[Edge], model: ErrorModel | None = None
 ) -> tuple[NDArray[np.intp], NDArray[np.intp], NDArray[np.float64], NDArray[np.float64]]:
     """The blocks of ``H`` as coordinate triplets (rows, cols, values; repeated cells add up)
     and the dense gradient ``b``."""
@@ -137,7 +142,7 @@ def _system_entries(
     if not edges:
         empty = np.zeros(0, dtype=np.intp)
         return empty, empty, np.zeros(0), g
-    e, a, b, om = _stacked(x, edges)
+    e, a, b, om = (model or stacked_errors)(x, edges)
     i = np.array([edge.i for edge in edges])
     j = np.array([edge.j for edge in edges])
     at_om, bt_om = np.einsum("kji,kjl->kil", a, om), np.einsum("kji,kjl->kil", b, om)
@@ -153,18 +158,19 @@ def _system_entries(
 
 
 def gauss_newton_step(
-    poses: ArrayLike, edges: Sequence[Edge], anchor: int = 0
+    poses: ArrayLike, edges: Sequence[Edge], anchor: int = 0, model: ErrorModel | None = None
 ) -> NDArray[np.float64]:
     """One undamped Gauss-Newton step with pose ``anchor`` held fixed; returns the new poses.
 
     ``H`` is assembled and factorised as a sparse matrix (scipy), so that a graph of a few
-    thousand poses takes milliseconds; the result equals a dense solve.
+    thousand poses takes milliseconds; the result equals a dense solve. ``model`` (errors and
+    Jacobians of all edges) defaults to :func:`stacked_errors`, this module's convention.
     """
     from scipy.sparse import csc_matrix  # type: ignore[import-untyped]
     from scipy.sparse.linalg import spsolve  # type: ignore[import-untyped]
 
     x = np.array(poses, dtype=float)
-    rows, cols, values, g = _system_entries(x, edges)
+    rows, cols, values, g = _system_entries(x, edges, model)
     n3 = len(g)
     h = csc_matrix((values, (rows, cols)), shape=(n3, n3))
     keep = np.ones(n3, dtype=bool)
@@ -177,14 +183,18 @@ def gauss_newton_step(
 
 
 def gauss_newton(
-    poses: ArrayLike, edges: Sequence[Edge], iterations: int, anchor: int = 0
+    poses: ArrayLike,
+    edges: Sequence[Edge],
+    iterations: int,
+    anchor: int = 0,
+    model: ErrorModel | None = None,
 ) -> tuple[NDArray[np.float64], list[float]]:
     """``iterations`` Gauss-Newton steps; returns the poses and χ² before each step and after."""
     x = np.array(poses, dtype=float)
-    history = [chi2(x, edges)]
+    history = [chi2(x, edges, model)]
     for _ in range(iterations):
-        x = gauss_newton_step(x, edges, anchor)
-        history.append(chi2(x, edges))
+        x = gauss_newton_step(x, edges, anchor, model)
+        history.append(chi2(x, edges, model))
     return x, history
 
 
@@ -290,10 +300,13 @@ def simulate(
 
 def to_g2o(poses: ArrayLike, edges: Sequence[Edge]) -> str:
     """A graph as g2o text (``VERTEX_SE2`` and ``EDGE_SE2`` lines; upper-triangle information)."""
-    lines = [f"VERTEX_SE2 {k} {x!r} {y!r} {t!r}" for k, (x, y, t) in enumerate(np.asarray(poses))]
+    lines = [
+        f"VERTEX_SE2 {k} {float(x)!r} {float(y)!r} {float(t)!r}"
+        for k, (x, y, t) in enumerate(np.asarray(poses))
+    ]
     for edge in edges:
         om = edge.information
         upper = (om[0, 0], om[0, 1], om[0, 2], om[1, 1], om[1, 2], om[2, 2])
         values = " ".join(repr(float(v)) for v in (*edge.z, *upper))
-        lines.append(f"EDGE_SE2 {edge.i} {edge.j} {values}")
+        lines.append(f"EDGE_SE2 {int(edge.i)} {int(edge.j)} {values}")
     return "\n".join(lines) + "\n"
