@@ -228,3 +228,25 @@ EDGE_SE2 2 3 1.357840 1.034262 1.566460 1.000000 0.000000 0.000000 1.000000 0.00
 EDGE_SE2 2 0 0.303492 1.865011 -3.113898 1.000000 0.000000 0.000000 1.000000 0.000000 1.000000
 EDGE_SE2 0 3 -0.928526 0.993695 -1.563542 1.000000 0.000000 0.000000 1.000000 0.000000 1.000000
 """
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.integers(2, 6), st.integers(1, 12))
+def test_one_step_solves_a_linear_problem_exactly(seed: int, n: int, extra: int) -> None:
+    """With pose 0 fixed and every edge leaving pose 0, each error is linear in the free pose
+    (``B`` is constant) as long as no angular error crosses ±π, so one Gauss-Newton step lands
+    on the minimum: the gradient vanishes and a second step does not move."""
+    rng = np.random.default_rng(seed)
+    x = np.column_stack([rng.uniform(-5, 5, (n, 2)), rng.uniform(-1, 1, n)])
+    x[:, 2] += rng.uniform(-3, 3)  # angular errors stay within (−π, π]: wrapping never kicks in
+    targets = [1 + k % (n - 1) for k in range(n - 1 + extra)]  # every free pose, some twice
+    edges = []
+    for k in targets:
+        z = (float(rng.uniform(-3, 3)), float(rng.uniform(-3, 3)), float(rng.uniform(-1, 1)))
+        root = np.eye(3) + rng.uniform(-0.3, 0.3, (3, 3))
+        edges.append(posegraph.Edge(0, k, z, root.T @ root))
+    once = posegraph.gauss_newton_step(x, edges)
+    _, grad = posegraph.linear_system(once, edges)
+    assert np.abs(grad[3:]).max() < 1e-8
+    twice = posegraph.gauss_newton_step(once, edges)
+    assert np.allclose(twice, once, atol=1e-10)
