@@ -1,0 +1,8 @@
+# mistake: y decreases with the sine (a clockwise heading convention)
+import math
+
+
+def odometry_step(pose, u):
+    x, y, t = pose
+    r1, d, r2 = u
+    return x + d * math.cos(t + r1), y - d * math.sin(t + r1), t + r1 + r2

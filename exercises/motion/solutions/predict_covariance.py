@@ -1,0 +1,14 @@
+import math
+
+import numpy as np
+
+
+def predict_covariance(pose, u, sigma, motion_cov):
+    theta = pose[2]
+    rot1, trans, _ = u
+    c, s = math.cos(theta + rot1), math.sin(theta + rot1)
+    G = np.array([[1.0, 0.0, -trans * s], [0.0, 1.0, trans * c], [0.0, 0.0, 1.0]])
+    V = np.array([[-trans * s, c, 0.0], [trans * c, s, 0.0], [1.0, 0.0, 1.0]])
+    S = np.array(sigma, dtype=float)
+    M = np.array(motion_cov, dtype=float)
+    return G @ S @ G.T + V @ M @ V.T

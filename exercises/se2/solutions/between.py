@@ -1,0 +1,8 @@
+import math
+
+
+def between(a, b):
+    dx = b[0] - a[0]
+    dy = b[1] - a[1]
+    c, s = math.cos(a[2]), math.sin(a[2])
+    return c * dx + s * dy, -s * dx + c * dy, b[2] - a[2]
