@@ -1,0 +1,143 @@
+"""Content tests for the filter chapters beyond the lesson: ``ekf-slam``, ``jcbb``, ``consistency``.
+
+1. canonical answers pinned to values derived here by hand, independently of the reference code;
+2. every code exercise ships ≥ 8 mutants (``exercises/<chapter>/mutants/<slug>/NN-name.py``,
+   first line ``# mistake: …``) and ≥ 3 variants (``variants/<slug>/NN-name.py``, first line
+   ``# method: …``); each mutant is rejected and each variant accepted, graded through the real
+   sandbox exactly as ``slamcourse check`` does (marked slow: about a second per file).
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import math
+from pathlib import Path
+from types import ModuleType
+
+import numpy as np
+import pytest
+
+from slamcourse.course.loader import load_course
+from slamcourse.course.locate import bundled_course_root
+from slamcourse.kinds import get_kind
+
+ROOT = Path(__file__).resolve().parents[2]
+CHAPTERS = tuple(
+    c for c in ("ekf-slam", "jcbb", "consistency") if (ROOT / "exercises" / c).is_dir()
+)
+
+
+def load_reference(chapter: str) -> ModuleType:
+    path = ROOT / "exercises" / chapter / "reference.py"
+    name = f"_ref_filters_{chapter.replace('-', '_')}"
+    spec = importlib.util.spec_from_file_location(name, path)
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+# --- 1. canonical answers ---------------------------------------------------------------------
+
+
+def test_ekf_slam_canonical_answers() -> None:
+    ref = load_reference("ekf-slam")
+    # K = p / (p + r) = 0.04 / 0.05
+    assert ref.scalar_gain(var_prior=0.04, var_meas=0.01) == pytest.approx(0.8)
+    assert ref.scalar_posterior(var_prior=0.04, var_meas=0.01) == pytest.approx(0.008)
+    # P⁺_yy = P_yy − P_xy² / (P_xx + R) = 0.09 − 0.0009 / 0.06
+    assert ref.correlated_update(pxx=0.04, pxy=0.03, pyy=0.09, rxx=0.02) == pytest.approx(0.075)
+    # 4 m along θ + φ = 0.8 rad from (2, 1)
+    assert ref.landmark_position(x=2, y=1, t=0.5, rng=4, brg=0.3) == pytest.approx(
+        [2 + 4 * math.cos(0.8), 1 + 4 * math.sin(0.8)]
+    )
+    # n = 9: (n + 2)² − n² = 121 − 81
+    assert ref.new_entries(landmarks=3) == 40
+    # G_r P_rr with a = 0.7: rows [P_xx − r s P_xθ, 0, P_xθ − r s P_θθ], [r c P_xθ, P_yy, r c P_θθ]
+    s, c = math.sin(0.7), math.cos(0.7)
+    expected = [
+        [0.04 - 5 * s * 0.005, 0, 0.005 - 5 * s * 0.01],
+        [5 * c * 0.005, 0.03, 5 * c * 0.01],
+    ]
+    got = ref.cross_covariance(t=0.3, rng=5, brg=0.4, vx=0.04, vy=0.03, vt=0.01, cxt=0.005)
+    assert np.allclose(got, expected)
+
+
+def test_ekf_slam_code_references_by_hand() -> None:
+    ref = load_reference("ekf-slam")
+    # straight ahead from heading 0: G_r = [[1, 0, 0], [0, 1, r]], G_z = diag(1, r)
+    a, b, t, r, sr, sb = 0.04, 0.03, 0.01, 5.0, 0.09, 0.0004
+    out = np.asarray(
+        ref.augment(mu=[0, 0, 0], P=np.diag([a, b, t]), z=[r, 0.0], R=np.diag([sr, sb]))
+    )
+    assert out.shape == (5, 5)
+    assert np.allclose(out[3:, :3], [[a, 0, 0], [0, b, r * t]])
+    assert np.allclose(out[3:, 3:], [[a + sr, 0], [0, b + r * r * t + r * r * sb]])
+    # a direct measurement of one coordinate of a 2-D state: (P⁻¹ + Hᵀ R⁻¹ H)⁻¹ by hand
+    p = np.array([[0.04, 0.03], [0.03, 0.09]])
+    got = np.asarray(ref.update_covariance(P=p, H=[[1.0, 0.0]], R=[[0.02]]))
+    assert np.allclose(
+        got,
+        [[0.04 - 0.04**2 / 0.06, 0.03 - 0.04 * 0.03 / 0.06], [0.03 - 0.04 * 0.03 / 0.06, 0.075]],
+    )
+
+
+# --- 2. mutants fail, variants pass -----------------------------------------------------------
+
+
+def _code_slugs(chapter: str) -> list[str]:
+    folder = ROOT / "exercises" / chapter
+    return [
+        p.stem
+        for p in sorted(folder.glob("*.yaml"))
+        if "\nkind: code\n" in p.read_text(encoding="utf-8")
+    ]
+
+
+def _cases(group: str) -> list[object]:
+    cases = []
+    for chapter in CHAPTERS:
+        for slug in _code_slugs(chapter):
+            for path in sorted((ROOT / "exercises" / chapter / group / slug).glob("*.py")):
+                exercise = f"{chapter}/{slug}"
+                cases.append(pytest.param(exercise, path, id=f"{exercise}/{path.stem}"))
+    return cases
+
+
+def test_every_code_exercise_has_enough_mutants_and_variants() -> None:
+    assert "ekf-slam" in CHAPTERS
+    for chapter in CHAPTERS:
+        folder = ROOT / "exercises" / chapter
+        slugs = _code_slugs(chapter)
+        assert slugs, chapter
+        for slug in slugs:
+            mutants = sorted((folder / "mutants" / slug).glob("*.py"))
+            variants = sorted((folder / "variants" / slug).glob("*.py"))
+            assert len(mutants) >= 8, f"{chapter}/{slug}: {len(mutants)} mutants"
+            assert len(variants) >= 3, f"{chapter}/{slug}: {len(variants)} variants"
+            for path in mutants:
+                assert path.read_text(encoding="utf-8").startswith("# mistake: "), path
+            for path in variants:
+                assert path.read_text(encoding="utf-8").startswith("# method: "), path
+
+
+COURSE = load_course(bundled_course_root())
+
+
+def _grade(exercise: str, path: Path) -> object:
+    spec = COURSE.exercise(exercise)
+    return get_kind("code").check_source(spec, path.read_text(encoding="utf-8"), path.name)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize(("exercise", "path"), _cases("mutants"))
+def test_mutant_is_rejected(exercise: str, path: Path) -> None:
+    verdict = _grade(exercise, path)
+    assert verdict.status in ("failed", "timeout"), verdict.feedback  # type: ignore[attr-defined]
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize(("exercise", "path"), _cases("variants"))
+def test_variant_is_accepted(exercise: str, path: Path) -> None:
+    verdict = _grade(exercise, path)
+    assert verdict.passed, verdict.feedback  # type: ignore[attr-defined]

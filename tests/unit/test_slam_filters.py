@@ -1,0 +1,193 @@
+"""Property tests of the filter half of the reference library: :mod:`slamcourse.slam.ekfslam`.
+
+The update keeps ``P`` a covariance (symmetric, positive semi-definite), never raises its trace,
+does nothing with an infinitely noisy sensor, and its Joseph and short forms agree; the inverse
+observation model inverts the observation model, and its Jacobians (and the observation's)
+match central finite differences.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from slamcourse.slam import ekfslam
+from slamcourse.slam.ekf import numerical_jacobian
+from slamcourse.slam.se2 import wrap_angle
+
+FAST = settings(max_examples=60, deadline=None)
+coord = st.floats(-20.0, 20.0, allow_nan=False, allow_infinity=False)
+heading = st.floats(-math.pi, math.pi, allow_nan=False, allow_infinity=False)
+
+
+@st.composite
+def filter_states(draw: st.DrawFn) -> tuple[np.ndarray, np.ndarray, int]:
+    """A state with 1–3 landmarks 1–20 m from the robot, a covariance ``L Lᵀ`` (variances
+    0.001–1) and the index of one landmark."""
+    landmarks = draw(st.integers(1, 3))
+    mu = [draw(coord), draw(coord), draw(heading)]
+    for _ in range(landmarks):
+        d, a = draw(st.floats(1.0, 20.0)), draw(heading)
+        mu += [mu[0] + d * math.cos(a), mu[1] + d * math.sin(a)]
+    n = len(mu)
+    rng = np.random.default_rng(draw(st.integers(0, 2**32 - 1)))  # the matrix from a seed: fast
+    low = np.tril(rng.uniform(-0.6, 0.6, (n, n)), -1) + np.diag(rng.uniform(0.3, 1.0, n))
+    scale = draw(st.sampled_from([0.01, 0.1, 1.0]))
+    return np.array(mu), low @ low.T * scale, draw(st.integers(0, landmarks - 1))
+
+
+@st.composite
+def noises(draw: st.DrawFn) -> np.ndarray:
+    """A correlated range-bearing noise covariance (σ_r 5–50 cm, σ_φ 0.005–0.05 rad)."""
+    sr, sb, rho = (
+        draw(st.floats(0.05, 0.5)),
+        draw(st.floats(0.005, 0.05)),
+        draw(st.floats(-0.8, 0.8)),
+    )
+    return np.array([[sr * sr, rho * sr * sb], [rho * sr * sb, sb * sb]])
+
+
+def _is_psd(m: np.ndarray) -> bool:
+    return bool(np.linalg.eigvalsh((m + m.T) / 2).min() >= -1e-12 * max(1.0, np.abs(m).max()))
+
+
+@FAST
+@given(filter_states(), noises())
+def test_update_keeps_a_symmetric_psd_covariance_with_no_larger_trace(
+    state: tuple[np.ndarray, np.ndarray, int], r: np.ndarray
+) -> None:
+    mu, p, j = state
+    h = ekfslam.observation_jacobian(mu, j)
+    p_new = ekfslam.update_covariance(p, h, r)
+    assert np.allclose(p_new, p_new.T, atol=1e-12)
+    assert _is_psd(p_new)
+    assert np.trace(p_new) <= np.trace(p) + 1e-12
+    # no single variance grows either: P − P⁺ = K S Kᵀ is positive semi-definite
+    assert _is_psd(p - p_new)
+
+
+@FAST
+@given(filter_states(), noises())
+def test_joseph_and_short_forms_agree(
+    state: tuple[np.ndarray, np.ndarray, int], r: np.ndarray
+) -> None:
+    mu, p, j = state
+    h = ekfslam.observation_jacobian(mu, j)
+    joseph = ekfslam.update_covariance(p, h, r)
+    short = ekfslam.update_covariance_simple(p, h, r)
+    assert np.allclose(joseph, short, rtol=1e-8, atol=1e-12)
+    # and both equal the information form (P⁻¹ + Hᵀ R⁻¹ H)⁻¹
+    info = np.linalg.inv(np.linalg.inv(p) + h.T @ np.linalg.solve(r, h))
+    assert np.allclose(joseph, info, rtol=1e-6, atol=1e-10)
+
+
+@FAST
+@given(filter_states(), noises(), st.floats(0.05, 0.5), st.floats(-0.05, 0.05))
+def test_an_infinitely_noisy_sensor_changes_nothing(
+    state: tuple[np.ndarray, np.ndarray, int], r: np.ndarray, dr: float, db: float
+) -> None:
+    mu, p, j = state
+    h_pred = ekfslam.observe(mu[:3], mu[3 + 2 * j : 5 + 2 * j])
+    z = h_pred + np.array([dr, db])
+    hj = ekfslam.observation_jacobian(mu, j)
+    mu_new, p_new = ekfslam.update(mu, p, z, h_pred, hj, r * 1e12)
+    step = mu_new - mu
+    step[2] = wrap_angle(step[2])  # a heading at π may come back as −π: the same angle
+    assert np.allclose(step, 0, atol=1e-9)
+    assert np.allclose(p_new, p, atol=1e-9)
+    # a useful sensor does move the state towards the measurement
+    mu_used, _ = ekfslam.update(mu, p, z, h_pred, hj, r)
+    assert not np.allclose(mu_used, mu, atol=1e-9)
+
+
+def test_gain_of_one_number_and_the_sparsity_of_k() -> None:
+    assert ekfslam.kalman_gain([[0.04]], [[1.0]], [[0.01]])[0, 0] == pytest.approx(0.8)
+    # landmark 3 uncorrelated with everything: its gain rows are zero
+    p = np.eye(9)
+    p[0, 3] = p[3, 0] = p[3, 5] = p[5, 3] = 0.3
+    h = ekfslam.observation_jacobian([0, 0, 0, 4, 3, -2, 6, 10, -1], 0)
+    k = ekfslam.kalman_gain(p, h, np.eye(2) * 0.01)
+    assert np.abs(k[7:]).max() == 0
+    assert np.abs(k[5:7]).max() > 0  # landmark 2: never observed, but correlated
+    kh = k @ h
+    assert set(np.flatnonzero(np.abs(kh).sum(axis=0))) <= {0, 1, 2, 3, 4}
+
+
+def test_update_wraps_the_bearing_innovation_and_the_heading() -> None:
+    mu = np.array([0.0, 0.0, 3.1, -5.0, 0.05])
+    p = np.diag([0.01, 0.01, 0.04, 0.01, 0.01])
+    h_pred = ekfslam.observe(mu[:3], mu[3:])  # bearing close to +π
+    z = [h_pred[0], wrap_angle(h_pred[1] + 0.2)]  # measured 0.2 rad further left: across ±π
+    nu = ekfslam.innovation(z, h_pred)
+    assert nu[1] == pytest.approx(0.2)
+    mu_new, _ = ekfslam.update(
+        mu, p, z, h_pred, ekfslam.observation_jacobian(mu, 0), np.diag([0.01, 0.001])
+    )
+    assert -math.pi < mu_new[2] <= math.pi
+    assert abs(wrap_angle(mu_new[2] - mu[2])) < 0.2  # the heading moved a little, not by 2π
+
+
+@FAST
+@given(coord, coord, heading, st.floats(0.5, 30.0), heading)
+def test_inverse_observation_inverts_the_observation(
+    x: float, y: float, t: float, r: float, phi: float
+) -> None:
+    landmark = ekfslam.inverse_observation((x, y, t), (r, phi))
+    back = ekfslam.observe((x, y, t), landmark)
+    assert back[0] == pytest.approx(r, rel=1e-9)
+    assert abs(wrap_angle(back[1] - phi)) < 1e-9
+
+
+@FAST
+@given(coord, coord, heading, st.floats(0.5, 30.0), heading)
+def test_inverse_jacobians_match_finite_differences(
+    x: float, y: float, t: float, r: float, phi: float
+) -> None:
+    g_r = numerical_jacobian(
+        lambda v: ekfslam.inverse_observation(v, (r, phi)), (x, y, t), angle_rows=()
+    )
+    g_z = numerical_jacobian(
+        lambda v: ekfslam.inverse_observation((x, y, t), v), (r, phi), angle_rows=()
+    )
+    assert np.allclose(ekfslam.inverse_jacobian_pose((x, y, t), (r, phi)), g_r, atol=1e-6)
+    assert np.allclose(ekfslam.inverse_jacobian_measurement((x, y, t), (r, phi)), g_z, atol=1e-6)
+
+
+@FAST
+@given(filter_states())
+def test_observation_jacobian_matches_finite_differences(
+    state: tuple[np.ndarray, np.ndarray, int],
+) -> None:
+    mu, _, j = state
+
+    def h(v: np.ndarray) -> np.ndarray:
+        return ekfslam.observe(v[:3], v[3 + 2 * j : 5 + 2 * j])
+
+    numeric = numerical_jacobian(h, mu, angle_rows=(1,))
+    assert np.allclose(ekfslam.observation_jacobian(mu, j), numeric, atol=1e-6)
+
+
+@FAST
+@given(filter_states(), noises(), st.floats(0.5, 30.0), heading)
+def test_augment_is_the_linearised_map_of_state_and_measurement(
+    state: tuple[np.ndarray, np.ndarray, int], r: np.ndarray, rng: float, phi: float
+) -> None:
+    mu, p, _ = state
+    mu_new, p_new = ekfslam.augment(mu, p, (rng, phi), r)
+    n = mu.size
+    assert mu_new.shape == (n + 2,) and p_new.shape == (n + 2, n + 2)
+    assert np.array_equal(p_new[:n, :n], p)  # the old block is copied unchanged
+    assert np.allclose(p_new, p_new.T) and _is_psd(p_new)
+
+    # the same covariance from a numerical Jacobian of (x, z) ↦ (x, g(x_r, z)) and blockdiag(P, R)
+    def lifted(v: np.ndarray) -> np.ndarray:
+        return np.concatenate([v[:n], ekfslam.inverse_observation(v[:3], v[n:])])
+
+    jac = numerical_jacobian(lifted, np.concatenate([mu, [rng, phi]]), angle_rows=())
+    joint = np.zeros((n + 2, n + 2))
+    joint[:n, :n], joint[n:, n:] = p, r
+    assert np.allclose(p_new, jac @ joint @ jac.T, rtol=1e-6, atol=1e-7)
