@@ -82,6 +82,41 @@ def test_ekf_slam_code_references_by_hand() -> None:
     )
 
 
+def test_jcbb_canonical_answers() -> None:
+    ref = load_reference("jcbb")
+    from scipy.stats import chi2
+
+    # S⁻¹ = [[s2, −c], [−c, s1]] / (s1 s2 − c²):
+    # (0.01·0.025 − 2·0.02·0.008 + 0.0064·0.025) / 0.000225
+    assert ref.pair_d2(nu1=-0.1, nu2=-0.08, s1=0.025, s2=0.025, c=0.02) == pytest.approx(0.4)
+    assert ref.mistake_pair_sum_individual(
+        nu1=-0.1, nu2=-0.08, s1=0.025, s2=0.025, c=0.02
+    ) == pytest.approx(0.656)
+    # two laser pairings and one camera bearing: 5 degrees of freedom
+    assert ref.mixed_gate(full=2, bearing_only=1, confidence=0.95) == pytest.approx(
+        chi2.ppf(0.95, 5), rel=1e-9
+    )
+    assert ref.scene_greedy_choice() == "c"  # both measurements with A
+    assert ref.scene_choice() == "a"  # z1–A, z2–B
+
+
+def test_jcbb_scene_figures_shown_in_prompts_come_from_the_scene() -> None:
+    import yaml
+
+    ref = load_reference("jcbb")
+    z1, z2 = ref.scene_measurements()
+    jointly = yaml.safe_load((ROOT / "exercises/jcbb/scene-jcbb.yaml").read_text("utf-8"))
+    shown = {k: v["value"] for k, v in jointly["parameters"].items()}
+    for key, pairing in {"d_ab": (0, 1), "d_ba": (1, 0), "d_aa": (0, 0), "d_0a": (-1, 0)}.items():
+        assert shown[key] == pytest.approx(ref.scene_d2(pairing), abs=1e-4), key
+    greedy = yaml.safe_load((ROOT / "exercises/jcbb/scene-greedy.yaml").read_text("utf-8"))
+    shown = {k: v["value"] for k, v in greedy["parameters"].items()}
+    assert [shown["z1r"], shown["z1b"]] == pytest.approx(z1, abs=1e-4)
+    assert [shown["z2r"], shown["z2b"]] == pytest.approx(z2, abs=1e-4)
+    for key, pairing in {"d11": (0, -1), "d12": (1, -1), "d21": (-1, 0), "d22": (-1, 1)}.items():
+        assert shown[key] == pytest.approx(ref.scene_d2(pairing), abs=1e-4), key
+
+
 # --- 2. mutants fail, variants pass -----------------------------------------------------------
 
 

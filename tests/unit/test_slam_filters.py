@@ -15,7 +15,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from slamcourse.slam import ekfslam
+from slamcourse.slam import ekfslam, jcbb
 from slamcourse.slam.ekf import numerical_jacobian
 from slamcourse.slam.se2 import wrap_angle
 
@@ -191,3 +191,85 @@ def test_augment_is_the_linearised_map_of_state_and_measurement(
     joint = np.zeros((n + 2, n + 2))
     joint[:n, :n], joint[n:, n:] = p, r
     assert np.allclose(p_new, jac @ joint @ jac.T, rtol=1e-6, atol=1e-7)
+
+
+# --- jcbb -------------------------------------------------------------------------------------
+
+
+def _scene() -> tuple[np.ndarray, np.ndarray, list[np.ndarray], np.ndarray]:
+    """Two landmarks 1.2 m apart, 10 m ahead; the true heading is 0.1 rad more than believed."""
+    mu = np.array([0.0, 0.0, 0.0, 10.0, 0.0, 10.0, 1.2])
+    p = np.diag([0.01, 0.01, 0.02, 0.01, 0.01, 0.01, 0.01])
+    truth = (0.0, 0.0, 0.1)
+    zs = [ekfslam.observe(truth, mu[3:5]), ekfslam.observe(truth, mu[5:7])]
+    return mu, p, zs, np.diag([0.04, 0.0004])
+
+
+def test_greedy_pairs_both_with_one_landmark_and_jcbb_does_not() -> None:
+    mu, p, zs, r = _scene()
+    assert jcbb.greedy_nn(mu, p, zs, r, 0.95) == (0, 0)
+    assert jcbb.jcbb(mu, p, zs, r, 0.95) == (0, 1)
+    assert jcbb.exhaustive(mu, p, zs, r, 0.95) == (0, 1)
+    # the right pairing is less surprising jointly than its two individual tests added up
+    joint = jcbb.hypothesis_d2(mu, p, zs, r, (0, 1))
+    apart = jcbb.hypothesis_d2(mu, p, zs, r, (0, -1)) + jcbb.hypothesis_d2(mu, p, zs, r, (-1, 1))
+    assert joint < 0.6 * apart
+    assert jcbb.hypothesis_d2(mu, p, zs, r, (1, 0)) > jcbb.joint_gate(2, 0.95)
+
+
+@st.composite
+def scans(draw: st.DrawFn) -> tuple[np.ndarray, np.ndarray, list[np.ndarray], np.ndarray]:
+    """A state with 2–3 landmarks, and 1–3 noisy measurements of some of them (or of clutter)
+    taken from a pose drawn from the filter's own uncertainty."""
+    mu, p, _ = draw(filter_states())
+    landmarks = (mu.size - 3) // 2
+    if landmarks < 2:
+        mu = np.concatenate([mu, mu[:2] + np.array([3.0, 4.0])])
+        p = np.pad(p, ((0, 2), (0, 2))) + np.diag([0.0] * (mu.size - 2) + [0.05, 0.05])
+    rng = np.random.default_rng(draw(st.integers(0, 2**32 - 1)))
+    truth = rng.multivariate_normal(mu, p)
+    r = draw(noises())
+    zs = []
+    for _ in range(draw(st.integers(1, 3))):
+        j = draw(st.integers(-1, (mu.size - 3) // 2 - 1))
+        spot = truth[3 + 2 * j : 5 + 2 * j] if j >= 0 else truth[:2] + rng.uniform(-10, 10, 2)
+        zs.append(ekfslam.observe(truth[:3], spot) + rng.multivariate_normal([0, 0], r))
+    return mu, p, zs, r
+
+
+@settings(max_examples=40, deadline=None)
+@given(scans())
+def test_jcbb_is_jointly_compatible_and_pairs_at_least_as_many_as_nn(
+    scan: tuple[np.ndarray, np.ndarray, list[np.ndarray], np.ndarray],
+) -> None:
+    mu, p, zs, r = scan
+    picked = jcbb.jcbb(mu, p, zs, r, 0.95)
+    used = [j for j in picked if j >= 0]
+    assert len(used) == len(set(used))
+    assert jcbb.jointly_compatible(mu, p, zs, r, picked, 0.95)
+    # every jointly compatible subset of nearest neighbour's pairs has no more pairings
+    nn = jcbb.greedy_nn(mu, p, zs, r, 0.95)
+    for mask in range(1 << len(zs)):
+        subset = tuple(j if mask >> i & 1 else -1 for i, j in enumerate(nn))
+        kept = [j for j in subset if j >= 0]
+        if len(kept) == len(set(kept)) and jcbb.jointly_compatible(mu, p, zs, r, subset, 0.95):
+            assert len(kept) <= len(used)
+
+
+@FAST
+@given(filter_states(), noises(), st.integers(0, 2**32 - 1))
+def test_joint_d2_of_a_sub_hypothesis_is_never_larger(
+    state: tuple[np.ndarray, np.ndarray, int], r: np.ndarray, seed: int
+) -> None:
+    mu, p, _ = state
+    landmarks = (mu.size - 3) // 2
+    h = np.vstack([ekfslam.observation_jacobian(mu, j) for j in range(landmarks)])
+    nu = np.random.default_rng(seed).normal(size=2 * landmarks) * 0.1
+    full = jcbb.joint_d2(h, p, r, nu)
+    for i in range(landmarks):  # drop pairing i: the marginal distance cannot grow
+        keep = [k for k in range(2 * landmarks) if k // 2 != i]
+        if keep:
+            assert jcbb.joint_d2(h[keep], p, r, nu[keep]) <= full * (1 + 1e-9) + 1e-12
+    # one pairing: the joint test is the individual one
+    s = h[:2] @ p @ h[:2].T + r
+    assert jcbb.joint_d2(h[:2], p, r, nu[:2]) == pytest.approx(nu[:2] @ np.linalg.solve(s, nu[:2]))

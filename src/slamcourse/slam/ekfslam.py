@@ -34,6 +34,7 @@ from slamcourse.slam.se2 import wrap_angle
 
 Vector = NDArray[np.float64]
 Matrix = NDArray[np.float64]
+Values = Sequence[float] | NDArray[np.float64]  # a short vector: a list or an array
 
 POSE_DIM = 3
 LANDMARK_DIM = 2
@@ -42,7 +43,7 @@ LANDMARK_DIM = 2
 # --- the observation model ------------------------------------------------------------------
 
 
-def observe(pose: Sequence[float], landmark: Sequence[float]) -> Vector:
+def observe(pose: Values, landmark: Values) -> Vector:
     """``h = (r, φ)``: range (m) and bearing (rad, wrapped) of ``landmark`` seen from ``pose``."""
     x, y, theta = (float(v) for v in pose)
     dx, dy = float(landmark[0]) - x, float(landmark[1]) - y
@@ -66,7 +67,7 @@ def observation_jacobian(state: Sequence[float] | Vector, j: int) -> Matrix:
     return h
 
 
-def innovation(z: Sequence[float], h: Sequence[float]) -> Vector:
+def innovation(z: Values, h: Values) -> Vector:
     """``ν = z − h`` (2,), the bearing difference wrapped into (−π, π]."""
     nu: Vector = np.array([float(z[0]) - float(h[0]), wrap_angle(float(z[1]) - float(h[1]))])
     return nu
@@ -123,21 +124,21 @@ def update(
 # --- a new landmark -------------------------------------------------------------------------
 
 
-def inverse_observation(pose: Sequence[float], z: Sequence[float]) -> Vector:
+def inverse_observation(pose: Values, z: Values) -> Vector:
     """``g(x_r, z)``: the world position (m) of a landmark measured at ``z = (r, φ)``; (2,)."""
     x, y, theta = (float(v) for v in pose)
     r, phi = float(z[0]), float(z[1])
     return np.array([x + r * math.cos(theta + phi), y + r * math.sin(theta + phi)])
 
 
-def inverse_jacobian_pose(pose: Sequence[float], z: Sequence[float]) -> Matrix:
+def inverse_jacobian_pose(pose: Values, z: Values) -> Matrix:
     """``G_r = ∂g/∂(x_r, y_r, θ_r)``, shape (2, 3)."""
     a = float(pose[2]) + float(z[1])
     r = float(z[0])
     return np.array([[1.0, 0.0, -r * math.sin(a)], [0.0, 1.0, r * math.cos(a)]])
 
 
-def inverse_jacobian_measurement(pose: Sequence[float], z: Sequence[float]) -> Matrix:
+def inverse_jacobian_measurement(pose: Values, z: Values) -> Matrix:
     """``G_z = ∂g/∂(r, φ)``, shape (2, 2)."""
     a = float(pose[2]) + float(z[1])
     r = float(z[0])
