@@ -117,6 +117,30 @@ def test_jcbb_scene_figures_shown_in_prompts_come_from_the_scene() -> None:
         assert shown[key] == pytest.approx(ref.scene_d2(pairing), abs=1e-4), key
 
 
+def test_consistency_canonical_answers() -> None:
+    ref = load_reference("consistency")
+    from scipy.stats import chi2
+
+    # e = (0.3, −0.4), P = [[0.09, 0.02], [0.02, 0.16]], det = 0.0140:
+    # (0.09·0.16 − 2·0.02·0.3·(−0.4) + 0.16·0.09) / 0.014 = (0.0144 + 0.0048 + 0.0144) / 0.014
+    got = ref.nees_value(xt=2.3, yt=1.1, xh=2.0, yh=1.5, pxx=0.09, pxy=0.02, pyy=0.16)
+    assert got == pytest.approx(0.0336 / 0.014)
+    assert ref.mistake_nees_euclidean(
+        xt=2.3, yt=1.1, xh=2.0, yh=1.5, pxx=0.09, pxy=0.02, pyy=0.16
+    ) == pytest.approx(0.25)
+    band = ref.anees_band(dof=3, runs=50, confidence=0.95)
+    assert band == pytest.approx([chi2.ppf(0.025, 150) / 50, chi2.ppf(0.975, 150) / 50], rel=1e-8)
+    # 4.6 × n = 9.2 is far above [χ²_100(0.025), χ²_100(0.975)] / 50 ≈ [1.48, 2.59]
+    assert ref.diagnosis(dof=2, runs=50, ratio=4.6, anees=9.2) == "b"
+    assert ref.diagnosis(dof=2, runs=50, ratio=1.0, anees=2.0) == "a"
+    assert ref.diagnosis(dof=3, runs=20, ratio=0.5, anees=1.5) == "c"
+    # a heading error across ±π: e = (−0.1, 0.1, 6.2 wrapped to 6.2 − 2π ≈ −0.083)
+    e = np.array([-0.1, 0.1, 6.2 - 2 * math.pi])
+    p = np.array([[0.04, 0.01, 0.0], [0.01, 0.04, 0.0], [0.0, 0.0, 0.01]])
+    got = ref.nees(x_true=[1.0, 2.0, 3.1], x_hat=[1.1, 1.9, -3.1], P=p.tolist())
+    assert got == pytest.approx(e @ np.linalg.inv(p) @ e)
+
+
 # --- 2. mutants fail, variants pass -----------------------------------------------------------
 
 

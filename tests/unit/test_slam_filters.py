@@ -15,7 +15,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from slamcourse.slam import ekfslam, jcbb
+from slamcourse.slam import consistency, ekfslam, jcbb
 from slamcourse.slam.ekf import numerical_jacobian
 from slamcourse.slam.se2 import wrap_angle
 
@@ -94,7 +94,7 @@ def test_an_infinitely_noisy_sensor_changes_nothing(
     h_pred = ekfslam.observe(mu[:3], mu[3 + 2 * j : 5 + 2 * j])
     z = h_pred + np.array([dr, db])
     hj = ekfslam.observation_jacobian(mu, j)
-    mu_new, p_new = ekfslam.update(mu, p, z, h_pred, hj, r * 1e12)
+    mu_new, p_new = ekfslam.update(mu, p, z, h_pred, hj, r * 1e16)
     step = mu_new - mu
     step[2] = wrap_angle(step[2])  # a heading at π may come back as −π: the same angle
     assert np.allclose(step, 0, atol=1e-9)
@@ -247,13 +247,21 @@ def test_jcbb_is_jointly_compatible_and_pairs_at_least_as_many_as_nn(
     used = [j for j in picked if j >= 0]
     assert len(used) == len(set(used))
     assert jcbb.jointly_compatible(mu, p, zs, r, picked, 0.95)
-    # every jointly compatible subset of nearest neighbour's pairs has no more pairings
+    # no subset of nearest neighbour's pairs that JCBB could reach (distinct landmarks, every
+    # prefix in measurement order jointly compatible: the branches it follows) pairs more
     nn = jcbb.greedy_nn(mu, p, zs, r, 0.95)
     for mask in range(1 << len(zs)):
         subset = tuple(j if mask >> i & 1 else -1 for i, j in enumerate(nn))
         kept = [j for j in subset if j >= 0]
-        if len(kept) == len(set(kept)) and jcbb.jointly_compatible(mu, p, zs, r, subset, 0.95):
+        reachable = all(
+            jcbb.jointly_compatible(mu, p, zs, r, subset[:i] + (-1,) * (len(zs) - i), 0.95)
+            for i in range(1, len(zs) + 1)
+        )
+        if len(kept) == len(set(kept)) and reachable:
             assert len(kept) <= len(used)
+    # and it never pairs fewer than brute force finds, except where a prefix fails its gate
+    best = jcbb.exhaustive(mu, p, zs, r, 0.95)
+    assert len(used) <= sum(1 for j in best if j >= 0)
 
 
 @FAST
@@ -273,3 +281,59 @@ def test_joint_d2_of_a_sub_hypothesis_is_never_larger(
     # one pairing: the joint test is the individual one
     s = h[:2] @ p @ h[:2].T + r
     assert jcbb.joint_d2(h[:2], p, r, nu[:2]) == pytest.approx(nu[:2] @ np.linalg.solve(s, nu[:2]))
+
+
+# --- consistency ------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(("dof", "runs"), [(1, 1), (2, 1), (2, 50), (3, 50), (6, 25), (3, 100)])
+def test_average_band_matches_scipy(dof: int, runs: int) -> None:
+    from scipy.stats import chi2
+
+    low, high = consistency.average_band(dof, runs, 0.95)
+    assert low == pytest.approx(chi2.ppf(0.025, dof * runs) / runs, rel=1e-8)
+    assert high == pytest.approx(chi2.ppf(0.975, dof * runs) / runs, rel=1e-8)
+
+
+def test_band_narrows_around_n_as_runs_grow() -> None:
+    widths = [np.subtract(*consistency.average_band(3, runs)[::-1]) for runs in (1, 10, 100)]
+    assert widths[0] > widths[1] > widths[2]
+    low, high = consistency.average_band(3, 100)
+    assert low < 3 < high
+
+
+def test_nees_of_gaussian_errors_averages_n() -> None:
+    rng = np.random.default_rng(7)
+    low = np.array([[0.3, 0, 0], [0.1, 0.2, 0], [0.05, -0.02, 0.1]])
+    p = low @ low.T
+    errors = rng.multivariate_normal(np.zeros(3), p, size=4000)
+    values = [consistency.nees(e, np.zeros(3), p) for e in errors]
+    assert np.mean(values) == pytest.approx(3, rel=0.05)
+
+
+@FAST
+@given(filter_states(), heading)
+def test_nees_wraps_the_heading_and_nothing_else(
+    state: tuple[np.ndarray, np.ndarray, int], shift: float
+) -> None:
+    mu, p, _ = state
+    x_hat = mu.copy()
+    x_hat[2] = wrap_angle(mu[2] + shift)
+    # a heading error is the same error whichever way it is written modulo 2π
+    expected = consistency.nees([0, 0, -shift], [0, 0, 0], p[:3, :3], angle_indices=(2,))
+    assert consistency.nees(mu[:3], x_hat[:3], p[:3, :3], angle_indices=(2,)) == pytest.approx(
+        expected, rel=1e-6, abs=1e-9
+    )
+    # the sign of the error does not matter
+    assert consistency.nees(mu, x_hat, p, (2,)) == pytest.approx(
+        consistency.nees(x_hat, mu, p, (2,)), rel=1e-9
+    )
+
+
+def test_simulated_filters_are_diagnosed() -> None:
+    consistent = consistency.simulate_anees(1.0, runs=50, steps=20, seed=1)
+    overconfident = consistency.simulate_anees(0.1, runs=50, steps=20, seed=1)
+    verdicts = [consistency.diagnose(a, 2, 50) for a in consistent]
+    assert verdicts.count("consistent") >= 17  # about 95 % of the steps
+    assert [consistency.diagnose(a, 2, 50) for a in overconfident[5:]].count("over-confident") >= 13
+    assert consistency.nis([0.3, -0.09], [[0.25, 0], [0, 0.01]]) == pytest.approx(1.17)
