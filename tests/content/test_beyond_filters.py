@@ -141,6 +141,31 @@ def test_consistency_canonical_answers() -> None:
     assert got == pytest.approx(e @ np.linalg.inv(p) @ e)
 
 
+def test_figures_quoted_in_the_consistency_chapter_come_from_the_library() -> None:
+    from slamcourse.slam import consistency
+
+    text = " ".join((ROOT / "chapters" / "16-consistency.md").read_text(encoding="utf-8").split())
+
+    def shown(value: float, digits: int) -> str:
+        return f"{value:.{digits}f}"
+
+    low, high = consistency.average_band(2, 50)
+    assert f"$[{shown(low, 2)}, {shown(high, 2)}]$" in text
+    low, high = consistency.average_band(2, 1)
+    assert f"$[{shown(low, 2)}, {shown(high, 2)}]$" in text
+    low, high = consistency.average_band(3, 1)
+    assert f"between {shown(low, 2)} and {shown(high, 2)}" in text
+    for scale, mean, inside in ((1.0, "1.97", "39 of the 40"), (0.1, "9.3", "only 2 of its 40")):
+        anees = consistency.simulate_anees(scale, runs=50, steps=40, seed=0)
+        digits = len(mean.split(".")[1])
+        assert shown(float(anees.mean()), digits) == mean
+        count = sum(consistency.diagnose(a, 2, 50) == "consistent" for a in anees)
+        assert f"{count} of" in inside and inside in text
+    pessimistic = consistency.simulate_anees(10.0, runs=50, steps=40, seed=0)
+    assert shown(float(pessimistic.mean()), 1) == "1.2" and "about 1.2" in text
+    assert all(consistency.diagnose(a, 2, 50) != "over-confident" for a in pessimistic)
+
+
 # --- 2. mutants fail, variants pass -----------------------------------------------------------
 
 
