@@ -175,3 +175,61 @@ def scene_greedy_choice(**_shown: float) -> str:
     """The choice greedy nearest neighbour makes in the scene."""
     picked = jcbb.greedy_nn(SCENE_MU, SCENE_P, scene_measurements(), SCENE_R, 0.95)
     return next(k for k, v in {**HYPOTHESES, "d": (-1, 0)}.items() if v == picked)
+
+
+# --- code: joint_compatible -------------------------------------------------------------------
+
+
+def joint_compatible(
+    H: ArrayLike, P: ArrayLike, R: ArrayLike, nu: ArrayLike, confidence: float
+) -> bool:
+    """``d²_H < χ²_{2k}(confidence)`` for the stacked innovation ``nu`` of ``k`` pairings."""
+    nu_v = np.asarray(nu, dtype=float)
+    return jcbb.joint_d2(H, P, R, nu_v) < chi2_quantile(confidence, nu_v.size)
+
+
+def compatible_inputs() -> Any:
+    """As :func:`joint_inputs`, with a confidence of 0.9, 0.95 or 0.99 and the innovation scaled
+    so that its joint ``d²`` lies anywhere in [0, 2 × gate] but never within 5 % of the gate."""
+    from hypothesis import strategies as st
+
+    @st.composite
+    def draw(draw: Any) -> dict[str, Any]:
+        kw = draw(joint_inputs())
+        confidence = draw(st.sampled_from([0.9, 0.95, 0.99]))
+        nu = np.asarray(kw["nu"], dtype=float)
+        gate = chi2_quantile(confidence, nu.size)
+        factor = draw(st.one_of(st.floats(0.0, 0.95), st.floats(1.05, 2.0)))
+        d2 = jcbb.joint_d2(kw["H"], kw["P"], kw["R"], nu)
+        if d2 <= 1e-12:
+            nu = np.full(nu.size, 0.01)
+            d2 = jcbb.joint_d2(kw["H"], kw["P"], kw["R"], nu)
+        kw["nu"] = (nu * math.sqrt(factor * gate / d2)).tolist()
+        kw["confidence"] = confidence
+        return kw
+
+    return draw()
+
+
+def mistake_compatible_sum_individual(
+    H: ArrayLike, P: ArrayLike, R: ArrayLike, nu: ArrayLike, confidence: float
+) -> bool:
+    """The individual ``d²`` added up (correlations ignored), against the right gate."""
+    nu_v = np.asarray(nu, dtype=float)
+    return mistake_joint_sum_individual(H, P, R, nu_v) < chi2_quantile(confidence, nu_v.size)
+
+
+def mistake_compatible_dof_per_pairing(
+    H: ArrayLike, P: ArrayLike, R: ArrayLike, nu: ArrayLike, confidence: float
+) -> bool:
+    """``k`` degrees of freedom (one per pairing) instead of ``2k``."""
+    nu_v = np.asarray(nu, dtype=float)
+    return jcbb.joint_d2(H, P, R, nu_v) < chi2_quantile(confidence, nu_v.size // 2)
+
+
+def mistake_compatible_sum_of_gates(
+    H: ArrayLike, P: ArrayLike, R: ArrayLike, nu: ArrayLike, confidence: float
+) -> bool:
+    """The joint ``d²`` against ``k`` individual gates added up, ``k·χ²₂(p)``."""
+    nu_v = np.asarray(nu, dtype=float)
+    return jcbb.joint_d2(H, P, R, nu_v) < nu_v.size // 2 * chi2_quantile(confidence, 2)

@@ -97,6 +97,19 @@ def test_jcbb_canonical_answers() -> None:
         chi2.ppf(0.95, 5), rel=1e-9
     )
     assert ref.scene_greedy_choice() == "c"  # both measurements with A
+    # the scene's right hypothesis, innovations (0, −0.1, 0, −0.1): well inside χ²₄ = 9.49
+    h = [[-1, 0, 0, 1, 0, 0, 0], [0, -0.1, -1, 0, 0.1, 0, 0]]
+    h += [[-10 / math.hypot(10, 1.2), -1.2 / math.hypot(10, 1.2), 0, 0, 0, 0, 0]]
+    h[2][5:] = [10 / math.hypot(10, 1.2), 1.2 / math.hypot(10, 1.2)]
+    h += [[1.2 / 101.44, -10 / 101.44, -1, 0, 0, -1.2 / 101.44, 10 / 101.44]]
+    p = np.diag([0.01, 0.01, 0.02, 0.01, 0.01, 0.01, 0.01])
+    r = np.diag([0.04, 0.0004])
+    nu = [0, -0.1, 0, -0.1]
+    s = np.array(h) @ p @ np.array(h).T + np.kron(np.eye(2), r)
+    assert ref.joint_d2(H=h, P=p, R=r, nu=nu) == pytest.approx(nu @ np.linalg.inv(s) @ nu)
+    assert ref.joint_compatible(H=h, P=p, R=r, nu=nu, confidence=0.95) is True
+    # five times the shift: d² = 25 × 0.49 ≈ 12.3 > 9.49 (one heading error of 0.5 rad is too much)
+    assert ref.joint_compatible(H=h, P=p, R=r, nu=[5 * v for v in nu], confidence=0.95) is False
     assert ref.scene_choice() == "a"  # z1–A, z2–B
 
 
