@@ -15,7 +15,7 @@ def joint_compatible(H, P, R, nu, confidence):
     dof = len(nu)
     S = H @ P @ H.T + np.kron(np.eye(dof // 2), R)
     d2 = float(nu @ np.linalg.solve(S, nu))
-    steps = 2000
+    steps = 400
     h = d2 / steps
     total = density(0, dof) + density(d2, dof)
     for i in range(1, steps):
