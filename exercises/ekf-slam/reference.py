@@ -324,3 +324,27 @@ def mistake_augment_heading_only(
     pm, rm = np.asarray(P, dtype=float), np.asarray(R, dtype=float)
     g_r, g_z = _jacobians(shifted, z)
     return _assemble(pm, g_r @ pm[:3, :], g_r @ pm[:3, :3] @ g_r.T + g_z @ rm @ g_z.T)
+
+
+# --- a heading update across ±π ---------------------------------------------------------------
+
+
+def heading_update(theta: float, var_t: float, compass: float, var_c: float) -> float:
+    """``θ⁺ = wrap(θ + K·wrap(z − θ))`` for a compass that measures the heading directly
+    (``H = 1``, ``K = P / (P + R)``), in (−π, π]."""
+    from slamcourse.slam.se2 import wrap_angle
+
+    gain = float(ekfslam.kalman_gain([[var_t]], [[1.0]], [[var_c]])[0, 0])
+    return wrap_angle(theta + gain * wrap_angle(compass - theta))
+
+
+def mistake_heading_unwrapped(theta: float, var_t: float, compass: float, var_c: float) -> float:
+    """The innovation ``z − θ`` not wrapped: a step of almost 2π the wrong way."""
+    return theta + var_t / (var_t + var_c) * (compass - theta)
+
+
+def mistake_heading_gain_swapped(theta: float, var_t: float, compass: float, var_c: float) -> float:
+    """The gain ``R / (P + R)``: the update moves by the prediction's weight."""
+    from slamcourse.slam.se2 import wrap_angle
+
+    return theta + var_c / (var_t + var_c) * wrap_angle(compass - theta)

@@ -51,6 +51,10 @@ def test_ekf_slam_canonical_answers() -> None:
     assert ref.landmark_position(x=2, y=1, t=0.5, rng=4, brg=0.3) == pytest.approx(
         [2 + 4 * math.cos(0.8), 1 + 4 * math.sin(0.8)]
     )
+    # across ±π: ν = −3.08 − 3.05 + 2π, θ⁺ = 3.05 + 0.8ν − 2π
+    nu = -3.08 - 3.05 + 2 * math.pi
+    got = ref.heading_update(theta=3.05, var_t=0.04, compass=-3.08, var_c=0.01)
+    assert got == pytest.approx(3.05 + 0.8 * nu - 2 * math.pi)
     # n = 9: (n + 2)² − n² = 121 − 81
     assert ref.new_entries(landmarks=3) == 40
     # G_r P_rr with a = 0.7: rows [P_xx − r s P_xθ, 0, P_xθ − r s P_θθ], [r c P_xθ, P_yy, r c P_θθ]
