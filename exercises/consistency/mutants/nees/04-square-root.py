@@ -1,0 +1,10 @@
+# mistake: the distance √(eᵀ P⁻¹ e) instead of its square
+import math
+
+import numpy as np
+
+
+def nees(x_true, x_hat, P):
+    e = np.array(x_true, dtype=float) - np.array(x_hat, dtype=float)
+    e[2] = math.remainder(e[2], 2 * math.pi)
+    return float(np.sqrt(e @ np.linalg.solve(np.array(P, dtype=float), e)))

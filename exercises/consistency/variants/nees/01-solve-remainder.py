@@ -1,0 +1,10 @@
+# method: numpy solve, heading wrapped with math.remainder
+import math
+
+import numpy as np
+
+
+def nees(x_true, x_hat, P):
+    e = np.asarray(x_true, dtype=float) - np.asarray(x_hat, dtype=float)
+    e[2] = math.remainder(e[2], 2 * math.pi)
+    return float(e @ np.linalg.solve(np.asarray(P, dtype=float), e))

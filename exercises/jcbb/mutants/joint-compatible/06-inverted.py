@@ -1,0 +1,20 @@
+# mistake: the comparison inverted: compatible when the CDF exceeds the confidence
+import math
+
+import numpy as np
+
+
+def d2_of(H, P, R, nu):
+    H, P, R, nu = (np.array(a, dtype=float) for a in (H, P, R, nu))
+    k = len(nu) // 2
+    S = H @ P @ H.T + np.kron(np.eye(k), R)
+    return float(nu @ np.linalg.solve(S, nu))
+
+
+def cdf_even(x2, dof):
+    x, k = x2 / 2, dof // 2
+    return 1 - math.exp(-x) * sum(x**i / math.factorial(i) for i in range(k))
+
+
+def joint_compatible(H, P, R, nu, confidence):
+    return cdf_even(d2_of(H, P, R, nu), len(nu)) > confidence

@@ -1,0 +1,9 @@
+# mistake: S⁻¹ taken entry by entry (1 / S)
+import numpy as np
+
+
+def joint_d2(H, P, R, nu):
+    H, P, R, nu = (np.array(a, dtype=float) for a in (H, P, R, nu))
+    k = len(nu) // 2
+    S = H @ P @ H.T + np.kron(np.eye(k), R)
+    return float(nu @ (1.0 / S) @ nu)
