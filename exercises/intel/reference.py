@@ -9,7 +9,6 @@ answer of a named misconception.
 
 from __future__ import annotations
 
-import math
 from functools import lru_cache
 from pathlib import Path
 from typing import Any

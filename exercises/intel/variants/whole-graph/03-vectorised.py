@@ -54,8 +54,12 @@ def intel_chi2(text, iterations):
         BtO = np.transpose(B, (0, 2, 1)) @ om
         H = np.zeros((3 * n, 3 * n))
         g = np.zeros(3 * n)
-        for p, q, blocks in ((idx_i, idx_i, AtO @ A), (idx_i, idx_j, AtO @ B),
-                             (idx_j, idx_i, BtO @ A), (idx_j, idx_j, BtO @ B)):
+        for p, q, blocks in (
+            (idx_i, idx_i, AtO @ A),
+            (idx_i, idx_j, AtO @ B),
+            (idx_j, idx_i, BtO @ A),
+            (idx_j, idx_j, BtO @ B),
+        ):
             np.add.at(H, (p[:, :, None], q[:, None, :]), blocks)
         np.add.at(g, idx_i, np.einsum("kab,kb->ka", AtO, err))
         np.add.at(g, idx_j, np.einsum("kab,kb->ka", BtO, err))
