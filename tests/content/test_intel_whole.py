@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import importlib.util
 import math
+import warnings
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -48,6 +49,15 @@ def _close(got: Any, want: float) -> bool:
     return isinstance(got, int | float) and math.isfinite(got) and abs(got - want) <= RTOL * want
 
 
+def _right(function: Callable[..., Any], example: dict[str, Any]) -> bool:
+    """Whether ``function`` gives the reference's χ² on ``example`` (raising is wrong)."""
+    try:
+        got = function(**example)
+    except Exception:  # e.g. a singular H: graded as 'raised'
+        return False
+    return _close(got, _ref("intel_chi2")(**example))
+
+
 def _grade(path: Path) -> Verdict:
     source = path.read_text(encoding="utf-8")
     return get_kind("code").check_source(SPEC, source, path.name)  # type: ignore[attr-defined]
@@ -72,8 +82,11 @@ def test_the_exercise_runs_with_its_own_limits() -> None:
 
 def test_the_strategy_is_exactly_the_whole_graph() -> None:
     from hypothesis import find
+    from hypothesis.errors import HypothesisWarning
 
-    drawn = find(_ref(SPEC.options.strategy or "")(), lambda _: True)
+    with warnings.catch_warnings():  # "overly large repr": the input is the 216 kB file
+        warnings.simplefilter("ignore", HypothesisWarning)
+        drawn = find(_ref(SPEC.options.strategy or "")(), lambda _: True)
     data = (FOLDER / "data" / "input_INTEL.g2o").read_text(encoding="utf-8")
     assert drawn == {"text": data, "iterations": 10}
 
@@ -88,16 +101,16 @@ def test_there_are_enough_mutants_and_variants() -> None:
 
 @pytest.mark.parametrize("path", MUTANTS, ids=lambda p: p.stem)
 def test_every_mutant_is_wrong_on_a_cheap_example(path: Path) -> None:
-    mutant, ref = _learner_function(path), _ref("intel_chi2")
-    wrong = [ex for ex in SPEC.options.examples if not _close(mutant(**ex), ref(**ex))]
+    mutant = _learner_function(path)
+    wrong = [ex for ex in SPEC.options.examples if not _right(mutant, ex)]
     assert wrong, f"{path.name} is right on every fixed example"
 
 
 @pytest.mark.parametrize("path", VARIANTS, ids=lambda p: p.stem)
 def test_every_variant_is_right_on_the_cheap_examples(path: Path) -> None:
-    variant, ref = _learner_function(path), _ref("intel_chi2")
+    variant = _learner_function(path)
     for ex in SPEC.options.examples:
-        assert _close(variant(**ex), ref(**ex)), ex["iterations"]
+        assert _right(variant, ex), ex["iterations"]
 
 
 @pytest.mark.parametrize(
