@@ -58,7 +58,8 @@ class CodeOptions:
         ``limits`` applied, or None when it has none (the defaults)."""
         from slamcourse.sandbox import Limits
 
-        return Limits(**dict(self.limits)) if self.limits else None
+        overrides: dict[str, Any] = dict(self.limits)  # whole numbers where Limits wants int
+        return Limits(**overrides) if overrides else None
 
 
 class CodeKind(Kind):
