@@ -9,7 +9,6 @@ answer of a named misconception.
 
 from __future__ import annotations
 
-import math
 from functools import lru_cache
 from pathlib import Path
 from typing import Any
@@ -291,3 +290,52 @@ def before_after_demo() -> tuple[list[list[float]], list[list[float]]]:
     """The INTEL trajectory before and after optimisation (for pictures; not an exercise)."""
     before, after = pg.before_after(DATA.read_text(encoding="utf-8"), ITERATIONS)
     return before.tolist(), after.tolist()
+
+
+# --- code: intel_chi2 (the whole graph) -------------------------------------------------------
+
+
+@lru_cache(maxsize=16)
+def _chi2_after(text: str, iterations: int, model: pg.ErrorModel | None = None) -> float:
+    """χ² (under ``model``'s error) after ``iterations`` Gauss-Newton steps, pose 0 fixed."""
+    graph = pg.parse_g2o(text)
+    _, history = pg.gauss_newton(graph.poses, graph.edges, int(iterations), model=model)
+    return history[-1]
+
+
+def intel_chi2(text: str, iterations: int) -> float:
+    """Parse a g2o text, run ``iterations`` undamped Gauss-Newton steps with pose 0 fixed and
+    return the final ``χ² = Σ eᵀ Ω e`` (dimensionless)."""
+    return _chi2_after(text, int(iterations))
+
+
+def intel_whole_input() -> Any:
+    """Exactly one input: the whole INTEL graph, as shipped, with ten iterations."""
+    from hypothesis import strategies as st
+
+    return st.just({"text": DATA.read_text(encoding="utf-8"), "iterations": ITERATIONS})
+
+
+def mistake_chi2_no_wrap(text: str, iterations: int) -> float:
+    """Angular errors never wrapped (neither in the steps nor in the χ² reported)."""
+    return _chi2_after(text, int(iterations), _unwrapped_model)
+
+
+def mistake_chi2_jacobian_sign(text: str, iterations: int) -> float:
+    """The top of A's third column negated: the steps go elsewhere; the χ² itself is right."""
+    return _chi2_after(text, int(iterations), _heading_sign_model)
+
+
+def mistake_chi2_inverse_convention(text: str, iterations: int) -> float:
+    """The inverted error ``(x_i⁻¹ ⊕ x_j)⁻¹ ⊕ z`` optimised and reported."""
+    return _chi2_after(text, int(iterations), inverse_convention)
+
+
+def mistake_chi2_half(text: str, iterations: int) -> float:
+    """GTSAM's printed error, ``½ Σ eᵀ Ω e``."""
+    return intel_chi2(text, iterations) / 2
+
+
+def mistake_chi2_not_optimised(text: str, iterations: int) -> float:
+    """The χ² of the initial guess: the steps never reached the poses."""
+    return _chi2_after(text, 0)
