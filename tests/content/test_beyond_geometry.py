@@ -80,6 +80,12 @@ EXPECTED: dict[str, object] = {
     ),
     "orderings/intel-nonzeros": FIGURES["nnz_md"],
     "orderings/intel-ratio": FIGURES["nnz_natural"] / FIGURES["nnz_md"],
+    # the canonical motion was drawn with θ = π/6: the two points must give it back
+    "scan-matching/two-point-angle": math.pi / 6,
+    # (2, 3) → (14, 7): 12 steps along x, plus the start cell
+    "scan-matching/beam-cells": 12 + 1,
+    # 5 hits of 0.85 and 2 passes of −0.4, by hand
+    "scan-matching/hit-log-odds": 3.45,
 }
 
 

@@ -1,0 +1,186 @@
+"""Reference code for chapter ``scan-matching``: closed-form alignment, ICP, ray casting.
+
+Points are ``(N, 2)`` lists in metres; ``align_2d`` returns ``[θ, t_x, t_y]`` (radians, metres)
+of the rigid motion with ``q_i ≈ R(θ) p_i + t``. Grid cells are integer pairs ``[x, y]``. The
+mathematics lives in :mod:`slamcourse.slam.scanmatch` and :mod:`slamcourse.slam.raycast`.
+Functions whose name starts with ``mistake_`` compute the answer of a named misconception.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+
+from slamcourse.slam import raycast, scanmatch
+
+Points = Sequence[Sequence[float]]
+
+
+# --- numeric: the angle from two correspondences -------------------------------------------------
+
+
+def _two_points(p1x: float, p1y: float, p2x: float, p2y: float, theta: float, tx: float,
+                ty: float) -> tuple[np.ndarray, np.ndarray]:
+    p = np.array([[p1x, p1y], [p2x, p2y]])
+    return p, p @ scanmatch.rotation(theta).T + np.array([tx, ty])
+
+
+def two_point_angle(p1x: float, p1y: float, p2x: float, p2y: float, theta: float, tx: float,
+                    ty: float, **_: float) -> float:
+    p, q = _two_points(p1x, p1y, p2x, p2y, theta, tx, ty)
+    return scanmatch.align_angle(p, q)[0]
+
+
+def mistake_two_point_positions(p1x: float, p1y: float, p2x: float, p2y: float, theta: float,
+                                tx: float, ty: float, **_: float) -> float:
+    """The bearing of ``q₂`` minus that of ``p₂`` from the origin: the translation ignored."""
+    _, q = _two_points(p1x, p1y, p2x, p2y, theta, tx, ty)
+    return math.atan2(q[1, 1], q[1, 0]) - math.atan2(p2y, p2x)
+
+
+def mistake_two_point_reversed(p1x: float, p1y: float, p2x: float, p2y: float, theta: float,
+                               tx: float, ty: float, **_: float) -> float:
+    return -two_point_angle(p1x, p1y, p2x, p2y, theta, tx, ty)
+
+
+def mistake_two_point_degrees(p1x: float, p1y: float, p2x: float, p2y: float, theta: float,
+                              tx: float, ty: float, **_: float) -> float:
+    return math.degrees(two_point_angle(p1x, p1y, p2x, p2y, theta, tx, ty))
+
+
+# --- numeric: cells of a beam, log-odds after hits ---------------------------------------------
+
+
+def beam_cells(x0: int, y0: int, x1: int, y1: int) -> int:
+    return len(raycast.bresenham(x0, y0, x1, y1))
+
+
+def mistake_beam_cells_4connected(x0: int, y0: int, x1: int, y1: int) -> int:
+    return abs(x1 - x0) + abs(y1 - y0) + 1
+
+
+def mistake_beam_cells_no_start(x0: int, y0: int, x1: int, y1: int) -> int:
+    return max(abs(x1 - x0), abs(y1 - y0))
+
+
+def hit_cell_log_odds(k: int, m: int, l_occ: float, l_free: float, **_: float) -> float:
+    value = raycast.log_odds_after_hits(0.0, l_occ, k)
+    return value + m * l_free
+
+
+def mistake_hits_ignore_free(k: int, m: int, l_occ: float, l_free: float, **_: float) -> float:
+    return k * l_occ
+
+
+def mistake_hits_averaged(k: int, m: int, l_occ: float, l_free: float, **_: float) -> float:
+    return (k * l_occ + m * l_free) / (k + m)
+
+
+def mistake_hits_probability(k: int, m: int, l_occ: float, l_free: float, **_: float) -> float:
+    """The probability ``σ(l)`` instead of the log-odds."""
+    return 1 / (1 + math.exp(-hit_cell_log_odds(k, m, l_occ, l_free)))
+
+
+# --- code: align_2d ----------------------------------------------------------------------------
+
+
+def align_2d(P: Points, Q: Points) -> list[float]:
+    theta, t = scanmatch.align_angle(P, Q)
+    return [theta, float(t[0]), float(t[1])]
+
+
+def align_inputs() -> Any:
+    """``P``: 2–10 points in [−20, 20]² m, not all within 0.5 m of their centroid. ``Q``: ``P``
+    moved by a rigid motion (θ in (−π, π], t in [−5, 5]² m), plus one of: nothing, noise of
+    0.02 m, noise of 1 m, or a mirror (``Q`` reflected), so that the unconstrained best fit is
+    sometimes a reflection. Draws where the best angle is ill-defined are rejected."""
+    from hypothesis import strategies as st
+
+    coord = st.floats(-20.0, 20.0, allow_nan=False, allow_infinity=False)
+    cloud = st.lists(st.tuples(coord, coord), min_size=2, max_size=10)
+
+    def make(args: tuple[Any, ...]) -> dict[str, Any]:
+        pts, theta, tx, ty, mode, seed = args
+        p = np.asarray(pts, dtype=float)
+        q = p @ scanmatch.rotation(theta).T + np.array([tx, ty])
+        rng = np.random.default_rng(seed)
+        if mode == "mirror":
+            q = q * np.array([1.0, -1.0])
+        elif mode != "exact":
+            q = q + rng.normal(0.0, float(mode), q.shape)
+        return {"P": p.round(6).tolist(), "Q": q.round(6).tolist()}
+
+    def well_posed(d: dict[str, Any]) -> bool:
+        p = np.asarray(d["P"])
+        _, _, h = scanmatch.cross_covariance(d["P"], d["Q"])
+        spread = float(np.sum((p - p.mean(axis=0)) ** 2))
+        return spread > 0.25 * len(p) and math.hypot(h[0, 1] - h[1, 0], h[0, 0] + h[1, 1]) > 1e-3 * spread
+
+    args = st.tuples(
+        cloud,
+        st.floats(-3.14159, 3.14159),
+        st.floats(-5.0, 5.0),
+        st.floats(-5.0, 5.0),
+        st.sampled_from(["exact", "exact", "mirror", 0.02, 1.0]),
+        st.integers(0, 2**31 - 1),
+    )
+    return args.map(make).filter(well_posed)
+
+
+def mistake_align_reflection(P: Points, Q: Points) -> list[float]:
+    """``R = V Uᵀ`` without the ``det`` correction; the angle read from the first column."""
+    pm, qm, h = scanmatch.cross_covariance(P, Q)
+    u, _, vt = np.linalg.svd(h)
+    r = vt.T @ u.T
+    t = qm - r @ pm
+    return [math.atan2(r[1, 0], r[0, 0]), float(t[0]), float(t[1])]
+
+
+def mistake_align_centroid_difference(P: Points, Q: Points) -> list[float]:
+    """The right angle, but ``t = q̄ − p̄``: the centroid of ``P`` not rotated."""
+    pm, qm, _ = scanmatch.cross_covariance(P, Q)
+    theta, _ = scanmatch.align_angle(P, Q)
+    t = qm - pm
+    return [theta, float(t[0]), float(t[1])]
+
+
+def mistake_align_transposed(P: Points, Q: Points) -> list[float]:
+    """``R = U Vᵀ``: the rotation taking ``Q`` to ``P`` (the angle's sign flipped)."""
+    pm, qm, _ = scanmatch.cross_covariance(P, Q)
+    theta, _ = scanmatch.align_angle(P, Q)
+    t = qm - scanmatch.rotation(-theta) @ pm
+    return [-theta, float(t[0]), float(t[1])]
+
+
+# --- code: bresenham ----------------------------------------------------------------------------
+
+
+def bresenham(x0: int, y0: int, x1: int, y1: int) -> list[list[int]]:
+    return [[x, y] for x, y in raycast.bresenham(x0, y0, x1, y1)]
+
+
+def mistake_bresenham_round_half_even(x0: int, y0: int, x1: int, y1: int) -> list[list[int]]:
+    """Python's ``round`` (ties to the even integer) on the exact line."""
+    dx, dy = x1 - x0, y1 - y0
+    n = max(abs(dx), abs(dy))
+    if n == 0:
+        return [[x0, y0]]
+    return [[x0 + round(k * dx / n), y0 + round(k * dy / n)] for k in range(n + 1)]
+
+
+def mistake_bresenham_no_end(x0: int, y0: int, x1: int, y1: int) -> list[list[int]]:
+    """The end cell left out."""
+    return bresenham(x0, y0, x1, y1)[:-1] or [[x0, y0]]
+
+
+def mistake_bresenham_ties_down(x0: int, y0: int, x1: int, y1: int) -> list[list[int]]:
+    """Ties rounded towards the smaller coordinate (``⌈v − 1/2⌉``)."""
+    dx, dy = x1 - x0, y1 - y0
+    n = max(abs(dx), abs(dy))
+    if n == 0:
+        return [[x0, y0]]
+    return [[x0 - ((-2 * k * dx + n) // (2 * n)), y0 - ((-2 * k * dy + n) // (2 * n))]
+            for k in range(n + 1)]
