@@ -60,7 +60,7 @@ def nearest_neighbours(p: ArrayLike, q: ArrayLike) -> NDArray[np.int64]:
     """For each row of ``p``, the index of the nearest row of ``q`` (ties: the smaller index)."""
     pa, qa = np.asarray(p, dtype=float), np.asarray(q, dtype=float)
     d2 = np.sum((pa[:, None, :] - qa[None, :, :]) ** 2, axis=2)
-    return np.argmin(d2, axis=1)
+    return np.asarray(np.argmin(d2, axis=1), dtype=np.int64)
 
 
 def icp_step(p: ArrayLike, q: ArrayLike) -> tuple[float, Matrix, NDArray[np.int64]]:
