@@ -184,3 +184,77 @@ def mistake_bresenham_ties_down(x0: int, y0: int, x1: int, y1: int) -> list[list
         return [[x0, y0]]
     return [[x0 - ((-2 * k * dx + n) // (2 * n)), y0 - ((-2 * k * dy + n) // (2 * n))]
             for k in range(n + 1)]
+
+
+# --- code: one ICP iteration -------------------------------------------------------------------
+
+
+def icp_step(P: Points, Q: Points) -> list[float]:
+    theta, t, _ = scanmatch.icp_step(P, Q)
+    return [theta, float(t[0]), float(t[1])]
+
+
+def icp_inputs() -> Any:
+    """``Q``: a reference scan of 3–12 points in [−20, 20]² m, at least 1 m apart. ``P``: a new
+    scan of 2–12 of those points (any subset, any order) seen after a small motion (|θ| ≤ 0.3
+    rad, |t| ≤ 1 m), optionally with 0.02 m noise. Draws whose matched pairs leave the angle
+    ill-defined are rejected."""
+    from hypothesis import strategies as st
+
+    coord = st.floats(-20.0, 20.0, allow_nan=False, allow_infinity=False)
+
+    def spread(pts: list[tuple[float, float]]) -> bool:
+        a = np.asarray(pts)
+        d = np.sqrt(np.sum((a[:, None] - a[None]) ** 2, axis=2)) + np.eye(len(a)) * 1e9
+        return bool(d.min() >= 1.0)
+
+    reference_scan = st.lists(st.tuples(coord, coord), min_size=3, max_size=12).filter(spread)
+
+    def with_new_scan(q: list[tuple[float, float]]) -> Any:
+        return st.tuples(
+            st.just(q),
+            st.lists(st.integers(0, len(q) - 1), min_size=2, max_size=12, unique=True),
+            st.floats(-0.3, 0.3),
+            st.floats(-1.0, 1.0),
+            st.floats(-1.0, 1.0),
+            st.sampled_from([0.0, 0.02]),
+            st.integers(0, 2**31 - 1),
+        )
+
+    def make(args: tuple[Any, ...]) -> dict[str, Any]:
+        q, index, theta, tx, ty, noise, seed = args
+        qa = np.asarray(q, dtype=float)
+        # p = R(θ)ᵀ (q − t): the new scan sees the same points from the moved pose
+        p = (qa[index] - np.array([tx, ty])) @ scanmatch.rotation(theta)
+        p = p + np.random.default_rng(seed).normal(0.0, noise, p.shape)
+        return {"P": p.round(6).tolist(), "Q": qa.round(6).tolist()}
+
+    def well_posed(d: dict[str, Any]) -> bool:
+        p = np.asarray(d["P"])
+        q = np.asarray(d["Q"])[scanmatch.nearest_neighbours(d["P"], d["Q"])]
+        _, _, h = scanmatch.cross_covariance(p, q)
+        size = float(np.sum((p - p.mean(axis=0)) ** 2))
+        return size > 0.5 and math.hypot(h[0, 1] - h[1, 0], h[0, 0] + h[1, 1]) > 1e-3 * size
+
+    return reference_scan.flatmap(with_new_scan).map(make).filter(well_posed)
+
+
+def mistake_icp_index_pairs(P: Points, Q: Points) -> list[float]:
+    """``P[i]`` paired with ``Q[i]`` (as many as the shorter list): no nearest-neighbour search."""
+    m = min(len(P), len(Q))
+    return align_2d(list(P)[:m], list(Q)[:m])
+
+
+def mistake_icp_reverse_search(P: Points, Q: Points) -> list[float]:
+    """Each ``q`` paired with its nearest ``p`` (the search run the other way)."""
+    pairs = scanmatch.nearest_neighbours(Q, P)
+    return align_2d(np.asarray(P, dtype=float)[pairs], Q)
+
+
+def mistake_icp_all_q_centroid(P: Points, Q: Points) -> list[float]:
+    """Right pairs and angle, but ``t`` uses the centroid of the whole reference scan."""
+    pairs = scanmatch.nearest_neighbours(P, Q)
+    qa = np.asarray(Q, dtype=float)
+    theta, _ = scanmatch.align_angle(P, qa[pairs])
+    t = qa.mean(axis=0) - scanmatch.rotation(theta) @ np.asarray(P, dtype=float).mean(axis=0)
+    return [theta, float(t[0]), float(t[1])]
