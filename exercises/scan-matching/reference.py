@@ -258,3 +258,55 @@ def mistake_icp_all_q_centroid(P: Points, Q: Points) -> list[float]:
     theta, _ = scanmatch.align_angle(P, qa[pairs])
     t = qa.mean(axis=0) - scanmatch.rotation(theta) @ np.asarray(P, dtype=float).mean(axis=0)
     return [theta, float(t[0]), float(t[1])]
+
+
+# --- code: a beam's update of a 2-D grid ---------------------------------------------------------
+
+
+def update_beam(grid: Sequence[Sequence[float]], x0: int, y0: int, x1: int, y1: int,
+                l_occ: float, l_free: float) -> list[list[float]]:
+    out = [list(map(float, row)) for row in grid]
+    cells = raycast.bresenham(x0, y0, x1, y1)
+    values = raycast.beam_update([out[y][x] for x, y in cells], l_occ, l_free)
+    for (x, y), value in zip(cells, values, strict=True):
+        out[y][x] = value
+    return out
+
+
+def beam_inputs() -> Any:
+    """A grid of 1–12 rows × 1–12 columns of log-odds in [−5, 5] (lists), a start and an end
+    cell inside it, ``l_occ`` in [0.1, 3] and ``l_free`` in [−3, −0.1]."""
+    from hypothesis import strategies as st
+
+    value = st.floats(-5.0, 5.0, allow_nan=False, allow_infinity=False)
+
+    def for_size(size: tuple[int, int]) -> Any:
+        h, w = size
+        return st.fixed_dictionaries({
+            "grid": st.lists(st.lists(value, min_size=w, max_size=w), min_size=h, max_size=h),
+            "x0": st.integers(0, w - 1),
+            "y0": st.integers(0, h - 1),
+            "x1": st.integers(0, w - 1),
+            "y1": st.integers(0, h - 1),
+            "l_occ": st.floats(0.1, 3.0),
+            "l_free": st.floats(-3.0, -0.1),
+        })
+
+    return st.tuples(st.integers(1, 12), st.integers(1, 12)).flatmap(for_size)
+
+
+def mistake_beam_start_skipped(grid: Sequence[Sequence[float]], x0: int, y0: int, x1: int,
+                               y1: int, l_occ: float, l_free: float) -> list[list[float]]:
+    """The robot's own cell left out of the free cells."""
+    out = update_beam(grid, x0, y0, x1, y1, l_occ, l_free)
+    if (x0, y0) != (x1, y1):
+        out[y0][x0] = float(grid[y0][x0])
+    return out
+
+
+def mistake_beam_hit_also_free(grid: Sequence[Sequence[float]], x0: int, y0: int, x1: int,
+                               y1: int, l_occ: float, l_free: float) -> list[list[float]]:
+    """The hit cell gets ``l_free`` as well as ``l_occ``."""
+    out = update_beam(grid, x0, y0, x1, y1, l_occ, l_free)
+    out[y1][x1] += l_free
+    return out
