@@ -16,11 +16,13 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
+from scipy.sparse.csgraph import reverse_cuthill_mckee
 
 from slamcourse.course.loader import load_course
 from slamcourse.course.variants import variant
 from slamcourse.kinds import get_kind
 from slamcourse.kinds.code import CodeKind
+from slamcourse.slam import orderings as so
 
 ROOT = Path(__file__).resolve().parents[2]
 COURSE = load_course(ROOT)
@@ -52,18 +54,30 @@ def chain_loop(n: int, a: int, b: int) -> list[tuple[int, int]]:
     return [(i, i + 1) for i in range(n - 1)] + [(a, b)]
 
 
+def _intel_lines() -> list[list[str]]:
+    return [line.split() for line in INTEL.read_text(encoding="utf-8").splitlines()]
+
+
+def _intel_poses() -> int:
+    return sum(1 for f in _intel_lines() if f and f[0] == "VERTEX_SE2")
+
+
+def _intel_pairs() -> list[tuple[int, int]]:
+    return sorted(
+        {
+            (min(int(f[1]), int(f[2])), max(int(f[1]), int(f[2])))
+            for f in _intel_lines()
+            if f and f[0] == "EDGE_SE2"
+        }
+    )
+
+
 def intel_by_superlu() -> dict[str, int]:
     """Poses, distinct edges and nnz(L) of SuperLU's factors of an SPD matrix of INTEL's pattern."""
-    lines = [line.split() for line in INTEL.read_text(encoding="utf-8").splitlines()]
-    n = sum(1 for f in lines if f and f[0] == "VERTEX_SE2")
-    pairs = {
-        (min(int(f[1]), int(f[2])), max(int(f[1]), int(f[2])))
-        for f in lines
-        if f and f[0] == "EDGE_SE2"
-    }
-    h = sp.csc_matrix(_spd(n, sorted(pairs)))
+    n, pairs = _intel_poses(), _intel_pairs()
+    h = sp.csc_matrix(_spd(n, pairs))
     out = {"poses": n, "edges": len(pairs)}
-    for name, spec in (("natural", "NATURAL"), ("md", "MMD_AT_PLUS_A")):
+    for name, spec in (("natural", "NATURAL"), ("md", "MMD_AT_PLUS_A"), ("colamd", "COLAMD")):
         lu = spla.splu(h, permc_spec=spec, diag_pivot_thresh=0.0, options={"SymmetricMode": True})
         out[f"nnz_{name}"] = int(lu.L.nnz)
     return out
@@ -114,6 +128,24 @@ def test_intel_prompt_figures_are_measured() -> None:
     assert {k: other[k] for k in ("poses", "edges", "fill_md")} == {
         k: params[k] for k in ("poses", "edges", "fill_md")
     }
+
+
+def test_chapter_figures_are_measured() -> None:
+    """The factor sizes the orderings chapter quotes: SuperLU's, and the symbolic count for RCM."""
+    text = (ROOT / "chapters" / "17-orderings.md").read_text(encoding="utf-8")
+    n, pairs = FIGURES["poses"], _intel_pairs()
+    rows = [i for i, _ in pairs] + [j for _, j in pairs]
+    cols = [j for _, j in pairs] + [i for i, _ in pairs]
+    pattern = sp.csr_matrix((np.ones(len(rows)), (rows, cols)), shape=(n, n))
+    rcm = [int(v) for v in reverse_cuthill_mckee(pattern, symmetric_mode=True)]
+    for figure in (
+        FIGURES["nnz_natural"],
+        FIGURES["nnz_md"],
+        FIGURES["nnz_colamd"],
+        so.factor_nonzeros(n, pairs, rcm),
+    ):
+        assert f"{figure:,}" in text, figure
+    assert f"{FIGURES['nnz_natural'] - n - len(pairs):,} fill edges" in text
 
 
 def test_every_non_code_exercise_is_pinned() -> None:
