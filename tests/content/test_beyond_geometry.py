@@ -32,7 +32,11 @@ INTEL = ROOT / "exercises" / "intel" / "data" / "input_INTEL.g2o"
 
 
 def _spd(n: int, edges: list[tuple[int, int]]) -> np.ndarray:
-    """A symmetric positive-definite matrix with the pattern of the graph (Laplacian + I)."""
+    """A symmetric positive-definite matrix with the pattern of the graph (Laplacian + I).
+
+    It is an M-matrix, so Cholesky never cancels: every structural nonzero of ``L`` is a true
+    nonzero (fill entries decay along long chains, so compare with 0, not with a threshold).
+    """
     h = np.eye(n)
     for i, j in edges:
         h[i, j] = h[j, i] = -1.0
@@ -45,7 +49,7 @@ def numeric_fill(n: int, edges: list[tuple[int, int]], order: list[int]) -> int:
     """Fill edges counted as the nonzeros of a numerical Cholesky factor ``L`` of ``P H Pᵀ``."""
     h = _spd(n, edges)[np.ix_(order, order)]
     lower = np.linalg.cholesky(h)
-    below = int(np.count_nonzero(np.abs(np.tril(lower, -1)) > 1e-12))
+    below = int(np.count_nonzero(np.tril(lower, -1) != 0))
     original = len({(min(i, j), max(i, j)) for i, j in edges})
     return below - original
 
@@ -94,6 +98,7 @@ EXPECTED: dict[str, object] = {
     ),
     "orderings/intel-nonzeros": FIGURES["nnz_md"],
     "orderings/intel-ratio": FIGURES["nnz_natural"] / FIGURES["nnz_md"],
+    "orderings/why-order": ["a"],
     # the canonical motion was drawn with θ = π/6: the two points must give it back
     "scan-matching/two-point-angle": math.pi / 6,
     # (2, 3) → (14, 7): 12 steps along x, plus the start cell
@@ -148,6 +153,20 @@ def test_chapter_figures_are_measured() -> None:
     assert f"{FIGURES['nnz_natural'] - n - len(pairs):,} fill edges" in text
 
 
+def test_factorisation_costs_are_measured() -> None:
+    """Σ c_k² of the why-order prompt, from the columns of numerical Cholesky factors (numpy)."""
+    n, pairs = FIGURES["poses"], _intel_pairs()
+    h = _spd(n, pairs)
+    params = variant(COURSE.exercise("orderings/why-order"), 0).params
+    for key, order in (
+        ("cost_natural", list(range(n))),
+        ("cost_md", so.min_degree_order(n, pairs)),
+    ):
+        lower = np.linalg.cholesky(h[np.ix_(order, order)])
+        counts = np.count_nonzero(np.tril(lower, -1) != 0, axis=0)
+        assert params[key] == int(np.sum(counts**2)), key
+
+
 def test_every_non_code_exercise_is_pinned() -> None:
     assert sorted(_non_code_ids()) == sorted(EXPECTED)
 
@@ -157,7 +176,9 @@ def test_canonical_answer(exercise_id: str) -> None:
     spec = COURSE.exercise(exercise_id)
     got = get_kind(spec.kind).expected(spec, variant(spec, 0))
     want = EXPECTED[exercise_id]
-    if isinstance(want, int):
+    if isinstance(want, list):  # choice ids
+        assert list(got) == want
+    elif isinstance(want, int):
         assert got == want
     else:
         np.testing.assert_allclose(
