@@ -1,0 +1,24 @@
+# mistake: order[v] read as the position of variable v (the inverse permutation)
+def _adj(n, edges):
+    adj = [set() for _ in range(n)]
+    for i, j in edges:
+        adj[i].add(j)
+        adj[j].add(i)
+    return adj
+
+
+def symbolic_fill(n, edges, order):
+    adj = _adj(n, edges)
+    sequence = sorted(range(n), key=lambda v: order[v])
+    fill = 0
+    for v in sequence:
+        nb = list(adj[v])
+        for k, a in enumerate(nb):
+            for b in nb[k + 1:]:
+                if b not in adj[a]:
+                    adj[a].add(b)
+                    adj[b].add(a)
+                    fill += 1
+        for a in nb:
+            adj[a].discard(v)
+    return fill

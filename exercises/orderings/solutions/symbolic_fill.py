@@ -1,0 +1,19 @@
+def symbolic_fill(n, edges, order):
+    """Number of fill edges created by eliminating the variables in `order`."""
+    adj = [set() for _ in range(n)]
+    for i, j in edges:
+        adj[i].add(j)
+        adj[j].add(i)
+    fill = 0
+    for v in order:
+        nb = list(adj[v])
+        for k, a in enumerate(nb):
+            for b in nb[k + 1:]:
+                if b not in adj[a]:
+                    adj[a].add(b)
+                    adj[b].add(a)
+                    fill += 1
+        for a in nb:
+            adj[a].discard(v)
+        adj[v].clear()
+    return fill

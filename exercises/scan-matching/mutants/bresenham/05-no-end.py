@@ -1,0 +1,7 @@
+# mistake: range(n) instead of range(n + 1): the end cell is left out
+def bresenham(x0, y0, x1, y1):
+    dx, dy = x1 - x0, y1 - y0
+    n = max(abs(dx), abs(dy))
+    if n == 0:
+        return [[x0, y0]]
+    return [[x0 + (2 * k * dx + n) // (2 * n), y0 + (2 * k * dy + n) // (2 * n)] for k in range(n)]
