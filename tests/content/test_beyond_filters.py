@@ -161,7 +161,7 @@ def test_consistency_canonical_answers() -> None:
 def test_figures_quoted_in_the_consistency_chapter_come_from_the_library() -> None:
     from slamcourse.slam import consistency
 
-    text = " ".join((ROOT / "chapters" / "16-consistency.md").read_text(encoding="utf-8").split())
+    text = " ".join((ROOT / "chapters" / "14-consistency.md").read_text(encoding="utf-8").split())
 
     def shown(value: float, digits: int) -> str:
         return f"{value:.{digits}f}"

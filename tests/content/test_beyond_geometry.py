@@ -137,7 +137,7 @@ def test_intel_prompt_figures_are_measured() -> None:
 
 def test_chapter_figures_are_measured() -> None:
     """The factor sizes the orderings chapter quotes: SuperLU's, and the symbolic count for RCM."""
-    text = (ROOT / "chapters" / "17-orderings.md").read_text(encoding="utf-8")
+    text = (ROOT / "chapters" / "16-orderings.md").read_text(encoding="utf-8")
     n, pairs = FIGURES["poses"], _intel_pairs()
     rows = [i for i, _ in pairs] + [j for _, j in pairs]
     cols = [j for _, j in pairs] + [i for i, _ in pairs]
