@@ -184,9 +184,14 @@ class CodeKind(Kind):
         *,
         require_isolation: bool = False,
         spawn: Any = None,
+        seed: int | None = None,
     ) -> Verdict:
         """Grade learner ``source`` in a fresh sandboxed worker: ``spawn()`` hands one out (the
-        engine's pool); without it one is spawned here."""
+        engine's pool); without it one is spawned here.
+
+        ``seed``: draw the property-test inputs with this Hypothesis seed instead of the
+        exercise's fixed one (the batch grader's hidden checks); such a run neither replays nor
+        records inputs."""
         from slamcourse.answers.text import unreadable_at
         from slamcourse.errors import GraderError
         from slamcourse.sandbox import Worker
@@ -210,7 +215,13 @@ class CodeKind(Kind):
                 if not loaded.ok:
                     return _load_verdict(loaded, filename, opts)
                 return self._grade(
-                    spec, worker.call, None, filename, isolation=worker.isolation.level
+                    spec,
+                    worker.call,
+                    None,
+                    filename,
+                    isolation=worker.isolation.level,
+                    use_recording=seed is None,
+                    seed=seed,
                 )
         except GraderError as exc:  # the grader's fault, said as such; no attempt is counted
             return Verdict("error", 0.0, f"Not graded (a problem on the grader's side): {exc}")
@@ -224,6 +235,7 @@ class CodeKind(Kind):
         *,
         isolation: str,
         use_recording: bool = True,
+        seed: int | None = None,
     ) -> Verdict:
         from slamcourse.grading import replay as recording
         from slamcourse.grading.properties import (
@@ -236,7 +248,7 @@ class CodeKind(Kind):
 
         opts: CodeOptions = spec.options
         ref = reference.function(spec, spec.reference or "", spec.reference_line)
-        seed = exercise_seed(spec.id)
+        seed = exercise_seed(spec.id) if seed is None else seed
         key = recording.recording_key(spec, seed, opts.max_examples)
         inputs = recording.load(key) if use_recording else None
         outcome = None

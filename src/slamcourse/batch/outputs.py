@@ -1,0 +1,41 @@
+"""Writing a batch's results: each file lands inside the output folder, under a name made from
+the submission's path as the grader was given it (never from anything inside a submission)."""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Sequence
+from pathlib import Path
+
+from slamcourse.batch import exporters
+from slamcourse.batch.grade import SubmissionGrade, output_names
+from slamcourse.errors import UsageError
+
+
+def write_results(
+    grades: Sequence[SubmissionGrade], paths: Sequence[Path], fmt: str, out: Path
+) -> list[Path]:
+    """``json``: ``<out>/<name>.json``; Gradescope, Exercism, PrairieLearn:
+    ``<out>/<name>/results.json``; ``junit``: ``<out>/junit.xml``. Returns the files written."""
+    if fmt not in exporters.FORMATS:
+        raise UsageError(f"unknown format {fmt}; choose one of {', '.join(exporters.FORMATS)}")
+    out.mkdir(parents=True, exist_ok=True)
+    root = out.resolve()
+    if fmt == "junit":
+        target = root / "junit.xml"
+        target.write_text(exporters.junit(grades), encoding="utf-8")
+        return [target]
+    written = []
+    project = exporters.PER_SUBMISSION[fmt]
+    for grade, name in zip(grades, output_names(paths), strict=True):
+        target = root / f"{name}.json" if fmt == "json" else root / name / "results.json"
+        if root not in target.resolve().parents:  # output_names makes this impossible
+            raise UsageError(f"refusing to write {target} outside {root}")
+        target.parent.mkdir(parents=True, exist_ok=True)
+        target.write_text(json.dumps(project(grade), indent=2, ensure_ascii=False) + "\n")
+        written.append(target)
+    return written
+
+
+def dumps(data: object) -> str:
+    return json.dumps(data, indent=2, ensure_ascii=False) + "\n"
