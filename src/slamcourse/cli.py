@@ -599,8 +599,12 @@ def cmd_grade(args: argparse.Namespace, out: Out) -> int:
     def bar(done: int, total: int, result: grade.SubmissionGrade) -> None:
         if tty:
             end = "\n" if done == total else ""
-            print("\r" + grade.bar_line(done, total, label=result.submission), end=end,
-                  file=sys.stderr, flush=True)  # fmt: skip
+            print(
+                "\r" + grade.bar_line(done, total, label=result.submission),
+                end=end,
+                file=sys.stderr,
+                flush=True,
+            )
 
     results = grade.grade_all(paths, options, jobs=args.jobs, on_done=bar)
     if args.out:

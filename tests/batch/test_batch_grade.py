@@ -184,9 +184,20 @@ def test_cli_grades_writes_outside_nothing_and_exits_0(
     out = tmp_path / "out"
     before = sorted(p for p in tmp_path.rglob("*"))
     code = main(
-        ["--course", str(FIXTURE_COURSE), "grade", str(sub), str(bad), "--format", "gradescope",
-         "--out", str(out), "--csv", str(tmp_path / "g.csv")]
-    )  # fmt: skip
+        [
+            "--course",
+            str(FIXTURE_COURSE),
+            "grade",
+            str(sub),
+            str(bad),
+            "--format",
+            "gradescope",
+            "--out",
+            str(out),
+            "--csv",
+            str(tmp_path / "g.csv"),
+        ]
+    )
     assert code == 0
     after = sorted(p for p in tmp_path.rglob("*"))
     new = [p for p in after if p not in before]

@@ -28,9 +28,11 @@ python3 -m venv {venv}
 RUN = """#!/usr/bin/env bash
 # Gradescope runs this for every submission.
 set -uo pipefail
-SOURCE=/autograder/source
-SUBMISSION=/autograder/submission
-RESULTS=/autograder/results
+ROOT=${{AUTOGRADER_ROOT:-/autograder}}  # overridable only to test this script
+SLAMCOURSE=${{SLAMCOURSE_BIN:-{venv}/bin/slamcourse}}
+SOURCE=$ROOT/source
+SUBMISSION=$ROOT/submission
+RESULTS=$ROOT/results
 OUT=$(mktemp -d)
 mkdir -p "$RESULTS"
 # a learner may upload the submission folder's files or the submission zip itself
@@ -43,10 +45,10 @@ if [ -d "$SOURCE/course" ]; then COURSE=(--course "$SOURCE/course"); fi
 if [ -f "$SOURCE/secret" ]; then export SLAMCOURSE_GRADING_SECRET="$(cat "$SOURCE/secret")"; fi
 # Gradescope's container is the outer sandbox; namespaces are used whenever it allows them
 ISOLATION=()
-if ! {venv}/bin/slamcourse doctor --json | grep -q '"isolation": "namespaces"'; then
+if ! "$SLAMCOURSE" doctor --json | grep -q '"isolation": "namespaces"'; then
   ISOLATION=(--allow-no-isolation)
 fi
-if {venv}/bin/slamcourse "${{COURSE[@]}}" grade "$SUBMISSION" --format gradescope \\
+if "$SLAMCOURSE" "${{COURSE[@]}}" grade "$SUBMISSION" --format gradescope \\
     --out "$OUT" "${{ISOLATION[@]}}"; then
   cp "$OUT"/*/results.json "$RESULTS/results.json"
 else

@@ -3,7 +3,7 @@
 
 | format | file | spec |
 |---|---|---|
-| Gradescope | ``results.json`` | gradescope-autograders.readthedocs.io, "Autograder specifications" |
+| Gradescope | ``results.json`` | gradescope-autograders.readthedocs.io, specs |
 | Exercism | ``results.json`` (version 3) | exercism/docs, building/tooling/test-runners/interface |
 | PrairieLearn | ``results.json`` | PrairieLearn docs, externalGrading |
 | JUnit | ``junit.xml`` | testsuites / testsuite / testcase / failure, error |
@@ -76,8 +76,10 @@ def gradescope(g: SubmissionGrade) -> dict[str, Any]:
 
 def _summary(g: SubmissionGrade) -> str:
     solved = sum(e.passed for e in g.exercises)
-    lines = [f"{solved} of {len(g.exercises)} exercises passed: {_num(g.score)} / "
-             f"{_num(g.max_score)} points."]  # fmt: skip
+    lines = [
+        f"{solved} of {len(g.exercises)} exercises passed: {_num(g.score)} / "
+        f"{_num(g.max_score)} points."
+    ]
     lines += [f"- note: {w}" for w in g.warnings]
     return "\n".join(lines)
 

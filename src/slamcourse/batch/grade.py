@@ -316,10 +316,18 @@ def _grade_answer(
             result = engine.submit(spec.id, answer.text or "", seed=answer.variant)
     except SlamcourseError as exc:
         return ExerciseGrade(
-            spec.id, spec.title, spec.kind, chapter, answer.variant, "invalid", 0.0,
-            str(exc), attempts=answer.attempts, command=_command(answer),
+            spec.id,
+            spec.title,
+            spec.kind,
+            chapter,
+            answer.variant,
+            "invalid",
+            0.0,
+            str(exc),
+            attempts=answer.attempts,
+            command=_command(answer),
             seconds=time.perf_counter() - start,
-        )  # fmt: skip
+        )
     verdict = result.verdict
     status, score, feedback = verdict.status, verdict.score, _cap(verdict.feedback)
     hidden = None
@@ -411,12 +419,17 @@ def grade_submission(path: Path, options: GradeOptions) -> SubmissionGrade:
                             "missing",
                             0.0,
                             "No answer was handed in for this exercise.",
-                        )  # fmt: skip
+                        )
                     )
         return SubmissionGrade(
-            name, learner, "graded", tuple(grades), None, tuple(warnings),
+            name,
+            learner,
+            "graded",
+            tuple(grades),
+            None,
+            tuple(warnings),
             time.perf_counter() - start,
-        )  # fmt: skip
+        )
     except SlamcourseError as exc:
         return SubmissionGrade(
             name, learner, "error", error=str(exc), seconds=time.perf_counter() - start

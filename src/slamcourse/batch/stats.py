@@ -93,9 +93,12 @@ def render_text(stats: dict[str, Any], width: int = 30) -> str:
         lines.append(f"{row['exercise']}  ({row['title']})")
         lines.append(
             f"  solved {row['solved']}/{row['learners']} ({row['solve_rate']:.0%}); "
-            + (f"mean attempts {mean} ({row['attempts_source']})" if mean is not None else
-               "no answers")
-        )  # fmt: skip
+            + (
+                f"mean attempts {mean} ({row['attempts_source']})"
+                if mean is not None
+                else "no answers"
+            )
+        )
         if row["misconceptions"]:
             top = ", ".join(f"{m} ×{n}" for m, n in row["misconceptions"])
             lines.append(f"  misconceptions: {top}")
