@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from slamcourse.batch.grade import GradeOptions, grade_submission
+from slamcourse.batch.grade import GradeOptions, duplicate_learners, grade_all, grade_submission
 from slamcourse.batch.submission import (
     MANIFEST,
     Limits,
@@ -233,3 +233,26 @@ def test_unknown_exercises_are_a_warning(tmp_path: Path) -> None:
     result = grade_submission(sub, GradeOptions(course=FIXTURE_COURSE))
     assert result.status == "graded"
     assert any("basics/nope" in w for w in result.warnings)
+
+
+def test_a_code_file_that_is_not_utf8_is_unreadable(tmp_path: Path) -> None:
+    sub = make_submission(tmp_path / "s", 5, {}, "x = 1\n")
+    (sub / "code" / "basics" / "range-bearing.py").write_bytes(b"import math\n# caf\xe9\n")
+    result = grade_submission(sub, GradeOptions(course=FIXTURE_COURSE))
+    code = {e.exercise: e for e in result.exercises}[CODE_ID]
+    assert code.status == "invalid"
+    assert "code/basics/range-bearing.py:2: byte 0xe9 is not UTF-8" in code.feedback
+
+
+def test_one_seed_under_two_names_is_flagged(tmp_path: Path) -> None:
+    def named(who: str, seed: int) -> Path:
+        return make_submission(
+            tmp_path / who, seed, {}, manifest={"learner": {"id": who, "name": who, "seed": seed}}
+        )
+
+    paths = [named("ann", 8), named("ben", 8), named("cat", 9), named("cat2", 10)]
+    grades = grade_all(paths, GradeOptions(course=FIXTURE_COURSE))
+    warnings = duplicate_learners(grades)
+    assert warnings == ["one learner seed is claimed by 2 learners: ann, ben"]
+    again = grade_all(paths[2:3] * 2, GradeOptions(course=FIXTURE_COURSE))
+    assert duplicate_learners(again) == ["learner cat appears in 2 submissions: cat, cat"]

@@ -122,6 +122,7 @@ class SubmissionGrade:
     error: str | None = None
     warnings: tuple[str, ...] = ()
     seconds: float = 0.0
+    fingerprint: str | None = None  # learner_id(learner seed): the same seed under two names
 
     @property
     def score(self) -> float:
@@ -136,6 +137,7 @@ class SubmissionGrade:
             "format": RESULT_FORMAT,
             "submission": self.submission,
             "learner": self.learner,
+            "fingerprint": self.fingerprint,
             "status": self.status,
             "error": self.error,
             "warnings": list(self.warnings),
@@ -157,6 +159,7 @@ class SubmissionGrade:
             error=d.get("error"),
             warnings=tuple(d.get("warnings", [])),
             seconds=d.get("seconds", 0.0),
+            fingerprint=d.get("fingerprint"),
         )
 
 
@@ -308,7 +311,7 @@ def _grade_answer(
         if answer.file is not None:
             if spec.kind != "code":
                 raise SubmissionError(f"{spec.id} is a {spec.kind} exercise: answer it with text")
-            source = sub.source(answer).decode("utf-8", errors="replace")
+            source = _text(sub.source(answer), answer.file)
             result = engine.submit_code(spec.id, source=source)
         else:
             if spec.kind == "code":
@@ -372,6 +375,16 @@ def _grade_answer(
     )
 
 
+def _text(data: bytes, name: str) -> str:
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        line = data.count(b"\n", 0, exc.start) + 1
+        raise SubmissionError(
+            f"{name}:{line}: byte {data[exc.start]:#04x} is not UTF-8 text; save the file as UTF-8"
+        ) from None
+
+
 def _cap(text: str) -> str:
     if len(text) <= MAX_FEEDBACK:
         return text
@@ -429,6 +442,7 @@ def grade_submission(path: Path, options: GradeOptions) -> SubmissionGrade:
             None,
             tuple(warnings),
             time.perf_counter() - start,
+            fingerprint=learner_id(sub.manifest.learner_seed),
         )
     except SlamcourseError as exc:
         return SubmissionGrade(
@@ -450,16 +464,22 @@ def grade_submission(path: Path, options: GradeOptions) -> SubmissionGrade:
 
 
 def duplicate_learners(grades: Sequence[SubmissionGrade]) -> list[str]:
-    """Warnings for learner ids handed in more than once in a batch."""
-    counts: dict[str, list[str]] = {}
-    for g in grades:
-        if g.learner is not None:
-            counts.setdefault(g.learner, []).append(g.submission)
-    return [
-        f"learner {who} appears in {len(subs)} submissions: {', '.join(subs)}"
-        for who, subs in sorted(counts.items())
-        if len(subs) > 1
-    ]
+    """Warnings for a learner id, or a learner seed (under different names), handed in more
+    than once in a batch: two learners with one seed share every variant."""
+    warnings = []
+    for key in ("learner", "fingerprint"):
+        groups: dict[str, list[SubmissionGrade]] = {}
+        for g in grades:
+            value = getattr(g, key)
+            if value is not None:
+                groups.setdefault(value, []).append(g)
+        for who, subs in sorted(groups.items()):
+            names = ", ".join(g.submission for g in subs)
+            if key == "learner" and len(subs) > 1:
+                warnings.append(f"learner {who} appears in {len(subs)} submissions: {names}")
+            elif key == "fingerprint" and len({g.learner for g in subs}) > 1:
+                warnings.append(f"one learner seed is claimed by {len(subs)} learners: {names}")
+    return warnings
 
 
 def grade_all(
