@@ -575,10 +575,10 @@ def cmd_grade(args: argparse.Namespace, out: Out) -> int:
     from slamcourse.batch import exporters, grade, outputs
 
     if args.merge_csv:
-        text = exporters.merge_gradebooks([Path(p).read_text("utf-8") for p in args.merge_csv])
         if not args.csv:
             raise UsageError("--merge-csv needs --csv FILE to write the merged gradebook to")
-        Path(args.csv).write_text(text, encoding="utf-8")
+        texts = outputs.read_files([Path(p) for p in args.merge_csv])
+        outputs.write_file(Path(args.csv), exporters.merge_gradebooks(texts))
         return 0
     if not args.submissions:
         raise UsageError("give the submissions to grade (folders or .zip files)")
@@ -612,7 +612,7 @@ def cmd_grade(args: argparse.Namespace, out: Out) -> int:
     elif args.format == "json":
         out.line(outputs.dumps([r.to_dict() for r in results]).rstrip())
     if args.csv:
-        Path(args.csv).write_text(exporters.gradebook(results), encoding="utf-8")
+        outputs.write_file(Path(args.csv), exporters.gradebook(results))
     for r in results:
         score = f"{r.score:g}/{r.max_score:g}" if r.status == "graded" else f"error: {r.error}"
         print(f"{r.learner or '?'}  {r.submission}  {score}", file=sys.stderr)
