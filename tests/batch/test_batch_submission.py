@@ -145,11 +145,23 @@ def test_a_truncated_zip_is_refused(tmp_path: Path) -> None:
         read(cut)
 
 
-def test_a_zipped_folder_is_accepted(tmp_path: Path) -> None:
+def test_a_zipped_folder_is_accepted_without_the_archivers_extras(tmp_path: Path) -> None:
     path = tmp_path / "wrapped.zip"
     with zipfile.ZipFile(path, "w") as zf:
         zf.writestr("ada/" + MANIFEST, (FIXTURE_MANIFEST_DIR / MANIFEST).read_bytes())
-    assert read(path).manifest.learner_id == learner_id(5)
+        zf.writestr("__MACOSX/ada/._submission.json", b"\0")
+        zf.writestr("ada/.DS_Store", b"\0")
+        zf.writestr("ada/notes with spaces.txt", b"hi")
+    sub = read(path)
+    assert sub.manifest.learner_id == learner_id(5)
+    assert set(sub.files) == {"notes with spaces.txt"}
+
+
+def test_a_git_checkout_is_read_without_its_history(tmp_path: Path) -> None:
+    sub = make_submission(tmp_path / "s", 5, {})
+    (sub / ".git" / "objects").mkdir(parents=True)
+    (sub / ".git" / "objects" / "x").write_bytes(b"\0" * 100)
+    assert read(sub, Limits(max_entries=2)).files == {}
 
 
 @pytest.mark.parametrize(
@@ -162,6 +174,10 @@ def test_a_zipped_folder_is_accepted(tmp_path: Path) -> None:
         (
             {"answers": [{"exercise": "basics/x", "variant": 0, "file": "../x.py"}]},
             "outside",
+        ),
+        (
+            {"answers": [{"exercise": "basics/x", "variant": 0, "file": "my code.py"}]},
+            "not a plain file name",
         ),
     ],
 )
@@ -256,3 +272,10 @@ def test_one_seed_under_two_names_is_flagged(tmp_path: Path) -> None:
     assert warnings == ["one learner seed is claimed by 2 learners: ann, ben"]
     again = grade_all(paths[2:3] * 2, GradeOptions(course=FIXTURE_COURSE))
     assert duplicate_learners(again) == ["learner cat appears in 2 submissions: cat, cat"]
+
+
+def test_an_overlong_answer_is_not_parsed(tmp_path: Path) -> None:
+    sub = make_submission(tmp_path / "s", 5, {"basics/distance": "1" * 20_000})
+    result = grade_submission(sub, GradeOptions(course=FIXTURE_COURSE))
+    distance = {e.exercise: e for e in result.exercises}["basics/distance"]
+    assert distance.status == "invalid" and "longer than" in distance.feedback

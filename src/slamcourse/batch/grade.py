@@ -46,6 +46,8 @@ if TYPE_CHECKING:
 RESULT_FORMAT = 1
 TIMING_FIELDS = frozenset({"seconds"})
 """Keys whose values change from run to run; everything else is deterministic."""
+MAX_ANSWER = 10_000
+"""Characters of a text answer the grader reads (answers are numbers, vectors, formulas)."""
 MAX_FEEDBACK = 4000
 """Characters of feedback kept per exercise (a flood of output stops here)."""
 
@@ -316,6 +318,10 @@ def _grade_answer(
         else:
             if spec.kind == "code":
                 raise SubmissionError(f"{spec.id} is a code exercise: hand in a file")
+            if len(answer.text or "") > MAX_ANSWER:
+                raise SubmissionError(
+                    f"{spec.id}: the answer is longer than {MAX_ANSWER} characters; not graded"
+                )
             result = engine.submit(spec.id, answer.text or "", seed=answer.variant)
     except SlamcourseError as exc:
         return ExerciseGrade(

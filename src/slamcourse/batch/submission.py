@@ -169,9 +169,11 @@ def build(
     root = course_root(engine.settings.course)
     states = store.states()
     latest: dict[str, str] = {}
+    known = set(engine.course.exercise_ids)
     for attempt in store.attempts():  # oldest first: the last one wins
-        if attempt.reset_at is None and attempt.variant == engine.variant(attempt.exercise_id).seed:
-            latest[attempt.exercise_id] = attempt.answer
+        ex = attempt.exercise_id
+        if ex in known and attempt.reset_at is None and attempt.variant == engine.variant(ex).seed:
+            latest[ex] = attempt.answer
     answers: list[Answer] = []
     files: dict[str, bytes] = {}
     for ex in engine.course.exercise_ids:
@@ -199,9 +201,15 @@ def build(
         course_version=__version__ if root == bundled_course_root() else "custom",
         course_hash=course_hash(root),
         answers=tuple(answers),
-        created=created,
+        created=created or _now(),
     )
     return Submission(manifest, files)
+
+
+def _now() -> str:
+    from datetime import UTC, datetime
+
+    return datetime.now(UTC).isoformat(timespec="seconds")
 
 
 def write(submission: Submission, out: Path) -> Path:
@@ -228,16 +236,24 @@ def write(submission: Submission, out: Path) -> Path:
 # ------------------------------------------------------------------------------ reading
 
 
-def _safe_name(name: str, where: str) -> str:
-    """A path inside a submission: relative, POSIX, no ``..``, plain names only."""
+def _safe_name(name: str, where: str, *, plain: bool = True) -> str:
+    """A path inside a submission: relative, POSIX, no ``..``; with ``plain``, every part made
+    of letters, digits, ``_.-`` (what a manifest's ``file`` may name)."""
     if "\\" in name or name.startswith("/") or re.match(r"^[A-Za-z]:", name):
         raise SubmissionError(f"{where}: the entry {name!r} is an absolute path; refusing it")
     parts = PurePosixPath(name).parts
     if not parts or any(p == ".." for p in parts):
         raise SubmissionError(f"{where}: the entry {name!r} points outside the submission")
-    if not all(_SAFE_PART.match(p) for p in parts):
+    if plain and not all(_SAFE_PART.match(p) for p in parts):
         raise SubmissionError(f"{where}: the entry name {name!r} is not a plain file name")
     return "/".join(parts)
+
+
+def _ignored(name: str) -> bool:
+    """Files an archiver or a checkout adds that are no part of the submission: hidden files
+    and folders (``.git/``, ``.DS_Store``) and macOS's ``__MACOSX/``."""
+    parts = name.split("/")
+    return parts[0] == "__MACOSX" or any(p.startswith(".") and p not in (".", "..") for p in parts)
 
 
 def _read_zip(path: Path, limits: Limits) -> dict[str, bytes]:
@@ -257,7 +273,9 @@ def _read_zip(path: Path, limits: Limits) -> dict[str, bytes]:
         for info in infos:
             if info.is_dir():
                 continue
-            name = _safe_name(info.filename, where)
+            name = _safe_name(info.filename, where, plain=False)
+            if _ignored(name):
+                continue
             if stat.S_ISLNK(info.external_attr >> 16):
                 raise SubmissionError(f"{where}: {name} is a symbolic link; refusing it")
             budget = min(limits.max_file_bytes, limits.max_total_bytes - total)
@@ -292,8 +310,9 @@ def _read_capped(fh: Any, budget: int) -> bytes | None:
 def _walk_folder(root: Path, limits: Limits) -> Iterator[tuple[str, Path]]:
     count = 0
     for dirpath, dirnames, filenames in os.walk(root, followlinks=False):
-        dirnames.sort()
-        for name in sorted(filenames) + [d for d in dirnames if Path(dirpath, d).is_symlink()]:
+        dirnames[:] = sorted(d for d in dirnames if not d.startswith("."))
+        links = [d for d in dirnames if Path(dirpath, d).is_symlink()]
+        for name in sorted(f for f in filenames if not f.startswith(".")) + links:
             count += 1
             if count > limits.max_entries:
                 raise SubmissionError(
@@ -307,7 +326,9 @@ def _read_folder(root: Path, limits: Limits) -> dict[str, bytes]:
     files: dict[str, bytes] = {}
     total = 0
     for rel, path in _walk_folder(root, limits):
-        name = _safe_name(rel, root.name)
+        name = _safe_name(rel, root.name, plain=False)
+        if _ignored(name):
+            continue
         info = path.lstat()
         if stat.S_ISLNK(info.st_mode):
             raise SubmissionError(f"{root.name}: {name} is a symbolic link; refusing it")
