@@ -28,7 +28,7 @@ WRONG_CODE = (
 CRASH_CODE = "import os\ndef range_bearing(dx, dy, theta):\n    os._exit(3)\n"
 FLOOD_CODE = (
     "import math\ndef range_bearing(dx, dy, theta):\n"
-    "    print('x' * 5_000_000)\n    return math.hypot(dx, dy), math.atan2(dy, dx) - theta\n"
+    "    print('x' * 200_000)\n    return math.hypot(dx, dy), math.atan2(dy, dx) - theta\n"
 )
 
 
@@ -211,3 +211,32 @@ def test_cli_grades_writes_outside_nothing_and_exits_0(
 
 def test_cli_refuses_to_run_without_submissions() -> None:
     assert main(["--course", str(FIXTURE_COURSE), "grade"]) == 2
+
+
+def test_the_bundled_course(tmp_path: Path) -> None:
+    """The one test on the real course: a learner's submission made by `submit`, graded."""
+    from slamcourse import __version__
+    from slamcourse.batch.submission import build, write
+    from slamcourse.engine import Engine
+    from slamcourse.settings import Settings
+
+    settings = Settings.from_env(home=tmp_path / "home")
+    with Engine.open(settings) as engine:
+        first = next(e for e in engine.course.exercise_ids if not engine.is_code(e))
+        engine.submit(first, "0")
+        sub = build(engine, learner_name="ada")
+    assert sub.manifest.course_version == __version__
+    path = write(sub, tmp_path / "ada.zip")
+    result = grade_submission(path, GradeOptions(hidden_runs=0))
+    assert result.status == "graded", result.error
+    graded = {e.exercise: e for e in result.exercises}
+    assert graded[first].status in ("failed", "invalid", "passed")
+    assert graded[first].variant == sub.manifest.answers[0].variant
+    assert len(graded) == len(engine.course.exercise_ids)
+
+
+def test_progress_bar_line() -> None:
+    from slamcourse.batch.grade import bar_line
+
+    assert bar_line(0, 4, width=8) == "[........] 0/4"
+    assert bar_line(3, 4, width=8, label="s3.zip") == "[######..] 3/4 s3.zip"
