@@ -240,3 +240,21 @@ def test_progress_bar_line() -> None:
 
     assert bar_line(0, 4, width=8) == "[........] 0/4"
     assert bar_line(3, 4, width=8, label="s3.zip") == "[######..] 3/4 s3.zip"
+
+
+def test_grade_refuses_without_isolation_unless_allowed(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    import slamcourse.engine
+
+    monkeypatch.setattr(slamcourse.engine, "diagnostics", lambda s: {"isolation": "rlimits"})
+    sub = make_submission(tmp_path / "x", 51, {"basics/distance": "1"})
+    args = ["--course", str(FIXTURE_COURSE), "grade", str(sub), "--out", str(tmp_path / "o")]
+    assert main(args) == 2
+    assert not (tmp_path / "o").exists()
+    assert main([*args, "--allow-no-isolation", "--csv", str(tmp_path / "a.csv")]) == 0
+    assert (tmp_path / "o" / "x.json").is_file()
+    merged = tmp_path / "all.csv"
+    assert main(["grade", "--merge-csv", str(tmp_path / "a.csv"), "--csv", str(merged)]) == 0
+    assert merged.read_text() == (tmp_path / "a.csv").read_text()
+    assert main(["grade", "--merge-csv", str(tmp_path / "nope.csv"), "--csv", str(merged)]) == 2
