@@ -573,6 +573,7 @@ def cmd_submit(args: argparse.Namespace, out: Out) -> int:
 def cmd_grade(args: argparse.Namespace, out: Out) -> int:
     """Grade submissions in batch; exit 0 whenever grading ran, whatever the scores."""
     from slamcourse.batch import exporters, grade, outputs
+    from slamcourse.settings import grading_secret
 
     if args.merge_csv:
         if not args.csv:
@@ -585,7 +586,7 @@ def cmd_grade(args: argparse.Namespace, out: Out) -> int:
     options = grade.GradeOptions(
         course=Path(args.course) if args.course else None,
         require_isolation=not args.allow_no_isolation,
-        secret=args.secret or os.environ.get("SLAMCOURSE_GRADING_SECRET", ""),
+        secret=args.secret or grading_secret(),
         hidden_runs=args.hidden,
     )
     if options.require_isolation:
@@ -636,8 +637,9 @@ def cmd_stats(args: argparse.Namespace, out: Out) -> int:
 def cmd_export(args: argparse.Namespace, out: Out) -> int:
     """Build a platform's autograder bundle (Gradescope)."""
     from slamcourse.batch import bundle
+    from slamcourse.settings import grading_secret
 
-    secret = args.secret or os.environ.get("SLAMCOURSE_GRADING_SECRET")
+    secret = args.secret or grading_secret()
     path = bundle.gradescope_bundle(
         Path(args.out), wheel=args.wheel, course=args.course, secret=secret
     )

@@ -14,15 +14,17 @@ from __future__ import annotations
 import json
 import os
 import sys
+from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
 
-def grade_job(root: Path, environ: dict[str, str]) -> dict[str, Any]:
+def grade_job(root: Path, environ: Mapping[str, str]) -> dict[str, Any]:
     """The PrairieLearn ``results.json`` for the job mounted at ``root``."""
     from slamcourse.batch import exporters
     from slamcourse.batch.grade import GradeOptions, grade_submission
     from slamcourse.batch.submission import MANIFEST
+    from slamcourse.settings import grading_secret, isolation_waived
 
     try:
         data = json.loads((root / "data" / "data.json").read_text(encoding="utf-8"))
@@ -38,15 +40,15 @@ def grade_job(root: Path, environ: dict[str, str]) -> dict[str, Any]:
     course = params.get("course")
     options = GradeOptions(
         course=Path(course) if isinstance(course, str) else None,
-        require_isolation=environ.get("SLAMCOURSE_ALLOW_NO_ISOLATION") != "1",
-        secret=environ.get("SLAMCOURSE_GRADING_SECRET", ""),
+        require_isolation=not isolation_waived(environ),
+        secret=grading_secret(environ),
         hidden_runs=int(params.get("hidden", 1)),
     )
     return exporters.prairielearn(grade_submission(target, options))
 
 
 def main(root: Path = Path("/grade")) -> int:
-    results = grade_job(root, dict(os.environ))
+    results = grade_job(root, os.environ)
     out = root / "results"
     out.mkdir(parents=True, exist_ok=True)
     (out / "results.json").write_text(json.dumps(results, indent=2) + "\n", encoding="utf-8")
