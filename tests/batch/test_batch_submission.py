@@ -279,3 +279,20 @@ def test_an_overlong_answer_is_not_parsed(tmp_path: Path) -> None:
     result = grade_submission(sub, GradeOptions(course=FIXTURE_COURSE))
     distance = {e.exercise: e for e in result.exercises}["basics/distance"]
     assert distance.status == "invalid" and "longer than" in distance.feedback
+
+
+def test_a_broken_reference_is_the_graders_error_not_the_learners(course_copy: Path) -> None:
+    ref = course_copy / "exercises" / "basics" / "reference.py"
+    ref.write_text(
+        ref.read_text().replace("return math.hypot(dx, dy)", "raise RuntimeError('oops')", 1)
+    )
+    sub = make_submission(
+        course_copy.parent / "s",
+        5,
+        {"basics/distance": "1"},
+        manifest={"course": {"version": "custom", "hash": course_hash(course_copy)}},
+    )
+    result = grade_submission(sub, GradeOptions(course=course_copy))
+    distance = {e.exercise: e for e in result.exercises}["basics/distance"]
+    assert distance.status == "error", distance
+    assert "grader's side" in distance.feedback

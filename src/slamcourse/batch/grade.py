@@ -323,16 +323,17 @@ def _grade_answer(
                     f"{spec.id}: the answer is longer than {MAX_ANSWER} characters; not graded"
                 )
             result = engine.submit(spec.id, answer.text or "", seed=answer.variant)
-    except SlamcourseError as exc:
+    except SlamcourseError as exc:  # the answer's own problem, or the grader's (said as such)
+        ours = not isinstance(exc, SubmissionError)
         return ExerciseGrade(
             spec.id,
             spec.title,
             spec.kind,
             chapter,
             answer.variant,
-            "invalid",
+            "error" if ours else "invalid",
             0.0,
-            str(exc),
+            f"Not graded (a problem on the grader's side): {exc}" if ours else str(exc),
             attempts=answer.attempts,
             command=_command(answer),
             seconds=time.perf_counter() - start,
