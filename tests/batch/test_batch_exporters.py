@@ -173,3 +173,14 @@ def test_gradebooks_of_shards_merge() -> None:
     assert exporters.merge_gradebooks([only_errors, a]) == exporters.gradebook([GRADED, BROKEN])
     with pytest.raises(UsageError, match="not a slamcourse gradebook"):
         exporters.merge_gradebooks(["a,b\n1,2\n"])
+
+
+def test_what_a_learner_chose_cannot_break_the_files() -> None:
+    tricky = SubmissionGrade(
+        "=cmd.zip", "=HYPERLINK(\"x\")", "graded",
+        (ExerciseGrade("basics/a", "A", "number", 1, 0, "failed", 0.0, "got \x1b[31m\x00"),),
+    )  # fmt: skip
+    root = ET.fromstring(exporters.junit([tricky]))  # well-formed despite control characters
+    assert root.find("testsuite").get("name") == '=HYPERLINK("x")'  # type: ignore[union-attr]
+    row = exporters.gradebook([tricky]).splitlines()[1]
+    assert row.startswith('"\'=HYPERLINK(""x"")",\'=cmd.zip,')

@@ -179,6 +179,7 @@ def test_a_git_checkout_is_read_without_its_history(tmp_path: Path) -> None:
             {"answers": [{"exercise": "basics/x", "variant": 0, "file": "my code.py"}]},
             "not a plain file name",
         ),
+        ({"learner": {"id": "a\nb", "name": "a\nb", "seed": 5}}, "printable"),
     ],
 )
 def test_malformed_manifests_say_which_field(

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import csv
 import io
+import re
 from collections.abc import Callable, Sequence
 from typing import Any
 from xml.etree import ElementTree as ET
@@ -135,18 +136,27 @@ def prairielearn(g: SubmissionGrade) -> dict[str, Any]:
     }
 
 
+_NOT_XML = re.compile("[^\t\n\r\x20-\ud7ff\ue000-\ufffd\U00010000-\U0010ffff]")
+
+
+def _xml(text: str) -> str:
+    """Text XML 1.0 can hold: characters it forbids (control characters, lone surrogates)
+    become U+FFFD."""
+    return _NOT_XML.sub("\ufffd", text)
+
+
 def junit(grades: Sequence[SubmissionGrade]) -> str:
     """JUnit XML: one ``testsuite`` per submission, one ``testcase`` per exercise."""
     root = ET.Element("testsuites", name="slamcourse")
     totals = {"tests": 0, "failures": 0, "errors": 0}
     for g in grades:
-        who = g.learner or g.submission
+        who = _xml(g.learner or g.submission)
         suite = ET.SubElement(root, "testsuite", name=who)
         counts = {"tests": 0, "failures": 0, "errors": 0}
         if g.status == "error":
             case = ET.SubElement(suite, "testcase", classname=who, name="submission")
-            ET.SubElement(case, "error", message="not graded", type="submission").text = str(
-                g.error
+            ET.SubElement(case, "error", message="not graded", type="submission").text = _xml(
+                str(g.error)
             )
             counts["tests"], counts["errors"] = 1, 1
         for e in g.exercises:
@@ -154,10 +164,14 @@ def junit(grades: Sequence[SubmissionGrade]) -> str:
             counts["tests"] += 1
             if e.status == "error":
                 counts["errors"] += 1
-                ET.SubElement(case, "error", message=e.status, type=e.status).text = e.feedback
+                ET.SubElement(case, "error", message=e.status, type=e.status).text = _xml(
+                    e.feedback
+                )
             elif not e.passed:
                 counts["failures"] += 1
-                ET.SubElement(case, "failure", message=e.status, type=e.status).text = e.feedback
+                ET.SubElement(case, "failure", message=e.status, type=e.status).text = _xml(
+                    e.feedback
+                )
         for key, value in counts.items():
             suite.set(key, str(value))
             totals[key] += value
@@ -202,8 +216,16 @@ def _csv(header: Sequence[Any], rows: Sequence[Sequence[Any]]) -> str:
     buf = io.StringIO()
     writer = csv.writer(buf, lineterminator="\n")
     writer.writerow(header)
-    writer.writerows(rows)
+    writer.writerows([[_cell(v) for v in row] for row in rows])
     return buf.getvalue()
+
+
+def _cell(value: Any) -> Any:
+    """A text cell a spreadsheet would read as a formula (``=``, ``+``, ``-``, ``@``) gets a
+    leading ``'``: a learner's name or an error message never runs in the gradebook."""
+    if isinstance(value, str) and value[:1] in ("=", "+", "-", "@", "\t", "\r"):
+        return "'" + value
+    return value
 
 
 def merge_gradebooks(texts: Sequence[str]) -> str:

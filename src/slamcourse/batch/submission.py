@@ -163,6 +163,10 @@ def build(
     from slamcourse import __version__
     from slamcourse.course.locate import bundled_course_root, course_root
 
+    if learner_name is not None and not _printable_name(learner_name):
+        from slamcourse.errors import UsageError
+
+        raise UsageError("--learner: give 1 to 100 printable characters (a name or an id)")
     store = engine.progress
     if store is None:
         raise SubmissionError("building a submission needs the learner's progress")
@@ -393,8 +397,10 @@ def parse_manifest(data: bytes, where: str) -> Manifest:
     if isinstance(seed, bool) or seed < 0:
         raise SubmissionError(f"{where}: learner.seed must be a whole number ≥ 0")
     name = learner.get("name")
-    if name is not None and not isinstance(name, str):
-        raise SubmissionError(f"{where}: learner.name must be a string or null")
+    if name is not None and not (isinstance(name, str) and _printable_name(name)):
+        raise SubmissionError(
+            f"{where}: learner.name must be null or 1 to 100 printable characters"
+        )
     answers_raw = _field(raw, "answers", list, where)
     answers: list[Answer] = []
     seen: set[str] = set()
@@ -429,6 +435,10 @@ def parse_manifest(data: bytes, where: str) -> Manifest:
         answers=tuple(answers),
         created=created if isinstance(created, str) else None,
     )
+
+
+def _printable_name(name: str) -> bool:
+    return 0 < len(name) <= 100 and name.isprintable() and name.strip() == name
 
 
 def _field(obj: dict[str, Any], key: str, typ: type, where: str, label: str | None = None) -> Any:
