@@ -420,7 +420,8 @@ def grade_submission(path: Path, options: GradeOptions) -> SubmissionGrade:
             require_isolation=options.require_isolation,
             record=False,
         )
-        with Engine.open(settings, with_progress=False) as engine:
+        code = any(a.file is not None for a in sub.manifest.answers)
+        with Engine.open(settings, with_progress=False, warm_sandbox=code) as engine:
             warnings = _check_claims(sub, engine, root, name)
             given = {a.exercise: a for a in sub.manifest.answers}
             grades: list[ExerciseGrade] = []
