@@ -191,7 +191,10 @@ def build(
             if not path.is_file():
                 continue
             rel = code_path(ex)
-            files[rel] = path.read_bytes()
+            try:
+                files[rel] = path.read_bytes()
+            except OSError as exc:
+                raise SubmissionError(f"cannot read {path}: {exc.strerror}") from None
             answers.append(Answer(ex, 0, file=rel, attempts=counted))
         elif ex in latest:
             variant = engine.variant(ex).seed
@@ -217,7 +220,14 @@ def _now() -> str:
 
 
 def write(submission: Submission, out: Path) -> Path:
-    """Save as a zip (``out`` ends in ``.zip``) or a folder; returns ``out``."""
+    """Save as a zip (``out`` ends in ``.zip``) or a new folder; returns ``out``."""
+    try:
+        return _write(submission, out)
+    except OSError as exc:
+        raise SubmissionError(f"cannot write {out}: {exc.strerror or exc}") from None
+
+
+def _write(submission: Submission, out: Path) -> Path:
     manifest = json.dumps(submission.manifest.to_dict(), indent=2, ensure_ascii=False) + "\n"
     if out.suffix.lower() == ".zip":
         out.parent.mkdir(parents=True, exist_ok=True)
@@ -226,8 +236,8 @@ def write(submission: Submission, out: Path) -> Path:
             for rel, data in sorted(submission.files.items()):
                 zf.writestr(rel, data)
         return out
-    if out.exists() and any(out.iterdir()):
-        raise SubmissionError(f"{out} exists and is not empty; choose a new folder or a .zip")
+    if out.exists() and (not out.is_dir() or any(out.iterdir())):
+        raise SubmissionError(f"{out} exists and is not an empty folder; choose a new folder or a .zip")
     out.mkdir(parents=True, exist_ok=True)
     (out / MANIFEST).write_text(manifest, encoding="utf-8")
     for rel, data in submission.files.items():
