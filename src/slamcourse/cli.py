@@ -581,8 +581,8 @@ def cmd_grade(args: argparse.Namespace, out: Out) -> int:
         texts = outputs.read_files([Path(p) for p in args.merge_csv])
         outputs.write_file(Path(args.csv), exporters.merge_gradebooks(texts))
         return 0
-    if not args.submissions:
-        raise UsageError("give the submissions to grade (folders or .zip files)")
+    if not args.submissions or args.hidden < 0:
+        raise UsageError("give the submissions to grade (folders or .zip files), --hidden N ≥ 0")
     options = grade.GradeOptions(
         course=Path(args.course) if args.course else None,
         require_isolation=not args.allow_no_isolation,
@@ -614,11 +614,8 @@ def cmd_grade(args: argparse.Namespace, out: Out) -> int:
         out.line(outputs.dumps([r.to_dict() for r in results]).rstrip())
     if args.csv:
         outputs.write_file(Path(args.csv), exporters.gradebook(results))
-    for r in results:
-        score = f"{r.score:g}/{r.max_score:g}" if r.status == "graded" else f"error: {r.error}"
-        print(f"{r.learner or '?'}  {r.submission}  {score}", file=sys.stderr)
-    for warning in grade.duplicate_learners(results):
-        print(f"warning: {warning}", file=sys.stderr)
+    for line in grade.summary_lines(results):
+        print(line, file=sys.stderr)
     return 0
 
 

@@ -526,6 +526,16 @@ def grade_all(
     return [r for r in results if r is not None]
 
 
+def summary_lines(grades: Sequence[SubmissionGrade]) -> list[str]:
+    """One line per submission (``learner  submission  score/max`` or its error), then the
+    batch's warnings."""
+    lines = []
+    for g in grades:
+        score = f"{g.score:g}/{g.max_score:g}" if g.status == "graded" else f"error: {g.error}"
+        lines.append(f"{g.learner or '?'}  {g.submission}  {score}")
+    return lines + [f"warning: {w}" for w in duplicate_learners(grades)]
+
+
 def bar_line(done: int, total: int, width: int = 30, label: str = "") -> str:
     """``[#####.....] 12/40 label``: one line of the progress bar the terminal face draws."""
     filled = width * done // total if total else width

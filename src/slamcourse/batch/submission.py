@@ -237,7 +237,9 @@ def _write(submission: Submission, out: Path) -> Path:
                 zf.writestr(rel, data)
         return out
     if out.exists() and (not out.is_dir() or any(out.iterdir())):
-        raise SubmissionError(f"{out} exists and is not an empty folder; choose a new folder or a .zip")
+        raise SubmissionError(
+            f"{out} exists and is not an empty folder; choose a new folder or a .zip"
+        )
     out.mkdir(parents=True, exist_ok=True)
     (out / MANIFEST).write_text(manifest, encoding="utf-8")
     for rel, data in submission.files.items():
