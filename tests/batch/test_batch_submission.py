@@ -62,6 +62,8 @@ def test_course_hash_changes_with_any_content(tmp_path: Path) -> None:
     assert course_hash(copy) == course_hash(FIXTURE_COURSE)
     (copy / "exercises" / "basics" / "__pycache__").mkdir(exist_ok=True)
     (copy / "exercises" / "basics" / "__pycache__" / "x.pyc").write_bytes(b"x")
+    (copy / "exercises" / ".hypothesis").mkdir()
+    (copy / "exercises" / ".hypothesis" / "db").write_bytes(b"x")
     assert course_hash(copy) == course_hash(FIXTURE_COURSE)
     with open(copy / "chapters" / "01-basics.md", "a") as fh:
         fh.write(" ")

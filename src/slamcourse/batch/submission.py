@@ -54,16 +54,19 @@ class Limits:
 
 def course_hash(root: Path) -> str:
     """``sha256:<hex>`` over every file of ``chapters/`` and ``exercises/`` (relative POSIX
-    path, then content, in path order; ``__pycache__`` and ``.pyc`` files left out), so the same
-    course content has the same hash on every machine and any edit changes it."""
+    path, then content, in path order; ``__pycache__``, ``.pyc`` and hidden files and folders
+    left out), so the same course content has the same hash on every machine, in a checkout
+    or installed, and any edit changes it."""
     digest = hashlib.sha256()
     files: list[tuple[str, Path]] = []
     for top in ("chapters", "exercises"):
         base = root / top
         for dirpath, dirnames, filenames in os.walk(base):
-            dirnames[:] = sorted(d for d in dirnames if d != "__pycache__")
+            dirnames[:] = sorted(
+                d for d in dirnames if d != "__pycache__" and not d.startswith(".")
+            )
             for name in filenames:
-                if name.endswith(".pyc"):
+                if name.endswith(".pyc") or name.startswith("."):
                     continue
                 path = Path(dirpath) / name
                 files.append((path.relative_to(root).as_posix(), path))
