@@ -209,8 +209,15 @@ def test_cli_grades_writes_outside_nothing_and_exits_0(
     assert capsys.readouterr().err.count("\n") == 2
 
 
-def test_cli_refuses_to_run_without_submissions() -> None:
+def test_cli_refuses_to_run_without_submissions_or_a_course(tmp_path: Path) -> None:
     assert main(["--course", str(FIXTURE_COURSE), "grade"]) == 2
+    sub = make_submission(tmp_path / "x", 51, {})
+    assert main(["--course", str(tmp_path / "nowhere"), "grade", str(sub)]) == 2
+    broken = tmp_path / "broken"
+    (broken / "exercises").mkdir(parents=True)
+    (broken / "chapters").mkdir()
+    (broken / "chapters" / "01-x.md").write_text("---\nid: x\n---\n```{exercise} x/none\n```\n")
+    assert main(["--course", str(broken), "grade", str(sub)]) >= 2
 
 
 def test_the_bundled_course(tmp_path: Path) -> None:

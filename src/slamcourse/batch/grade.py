@@ -490,6 +490,18 @@ def duplicate_learners(grades: Sequence[SubmissionGrade]) -> list[str]:
     return warnings
 
 
+def preflight(options: GradeOptions) -> None:
+    """Raise when no submission could be graded: the course is missing or its chapter index is
+    broken (a usage or course error, not one error per submission)."""
+    from slamcourse.course.loader import load_course
+    from slamcourse.course.locate import course_root
+
+    root = course_root(options.course)
+    if not load_course(root).exercise_ids:
+        raise UsageError(f"the course at {root} has no exercises to grade")
+    _course_identity(root)
+
+
 def grade_all(
     paths: Sequence[Path],
     options: GradeOptions,
@@ -500,6 +512,7 @@ def grade_all(
     """Grade ``paths`` (results in the order given); ``jobs`` > 1 grades in worker processes."""
     if jobs < 1:
         raise UsageError("--jobs must be at least 1")
+    preflight(options)
     results: list[SubmissionGrade | None] = [None] * len(paths)
     total = len(paths)
     if jobs == 1 or total <= 1:
