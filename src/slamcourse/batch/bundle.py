@@ -20,7 +20,13 @@ SETUP = """#!/usr/bin/env bash
 set -euo pipefail
 apt-get update
 apt-get install -y --no-install-recommends python3 python3-venv python3-pip bubblewrap
-python3 -m venv {venv}
+PYTHON=python3
+# slamcourse needs Python 3.11 or newer (Gradescope's Ubuntu 22.04 image has 3.10)
+if ! python3 -c 'import sys; sys.exit(sys.version_info < (3, 11))'; then
+  apt-get install -y --no-install-recommends python3.11 python3.11-venv
+  PYTHON=python3.11
+fi
+"$PYTHON" -m venv {venv}
 {venv}/bin/pip install --upgrade pip
 {install}
 """
