@@ -61,6 +61,9 @@ def test_gradescope_bundle(tmp_path: Path) -> None:
             assert stat.S_IMODE(zf.getinfo(script).external_attr >> 16) & 0o111
         assert f"pip install /autograder/source/{wheel.name}" in zf.read("setup.sh").decode()
         run = zf.read("run_autograder").decode()
+        for script in ("setup.sh", "run_autograder"):
+            syntax = subprocess.run(["bash", "-n"], input=zf.read(script), capture_output=True)
+            assert syntax.returncode == 0, syntax.stderr
         assert "--format gradescope" in run and "/autograder" in run
     pypi = gradescope_bundle(tmp_path / "p.zip")
     with zipfile.ZipFile(pypi) as zf:
