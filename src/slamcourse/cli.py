@@ -583,6 +583,8 @@ def cmd_grade(args: argparse.Namespace, out: Out) -> int:
         return 0
     if not args.submissions or args.hidden < 0:
         raise UsageError("give the submissions to grade (folders or .zip files), --hidden N ≥ 0")
+    if args.format != "json" and not args.out:
+        raise UsageError(f"--format {args.format} writes files: give --out DIR")
     options = grade.GradeOptions(
         course=Path(args.course) if args.course else None,
         require_isolation=not args.allow_no_isolation,
