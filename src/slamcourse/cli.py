@@ -618,6 +618,8 @@ def cmd_grade(args: argparse.Namespace, out: Out) -> int:
         outputs.write_file(Path(args.csv), exporters.gradebook(results))
     for line in grade.summary_lines(results):
         print(line, file=sys.stderr)
+    if options.hidden_runs and not options.secret:
+        print("note: no --secret: learners could compute the hidden checks' seeds", file=sys.stderr)
     return 0
 
 

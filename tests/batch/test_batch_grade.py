@@ -206,7 +206,8 @@ def test_cli_grades_writes_outside_nothing_and_exits_0(
     assert "not a readable zip" in bad_result["output"]
     rows = (tmp_path / "g.csv").read_text().splitlines()
     assert rows[2].startswith("learner-") and ",x," in rows[2]
-    assert capsys.readouterr().err.count("\n") == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 3 and "no --secret" in err
 
 
 def test_cli_refuses_to_run_without_submissions_or_a_course(tmp_path: Path) -> None:
