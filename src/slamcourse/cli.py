@@ -586,6 +586,98 @@ def cmd_plot(args: argparse.Namespace, out: Out) -> int:
     )
 
 
+# ------------------------------------------------------------------------------ batch grading
+
+
+def cmd_submit(args: argparse.Namespace, out: Out) -> int:
+    """Write what the learner hands in: latest answers, code files, seeds, course hash."""
+    from slamcourse.batch import submission
+
+    with _engine(args) as engine:
+        sub = submission.build(engine, learner_name=args.learner)
+    path = submission.write(sub, Path(args.out))
+    out.line(f"Wrote {path}: {len(sub.manifest.answers)} answers of {sub.manifest.learner_id}.")
+    return 0
+
+
+def cmd_grade(args: argparse.Namespace, out: Out) -> int:
+    """Grade submissions in batch; exit 0 whenever grading ran, whatever the scores."""
+    from slamcourse.batch import exporters, grade, outputs
+    from slamcourse.settings import grading_secret
+
+    if args.merge_csv:
+        if not args.csv:
+            raise UsageError("--merge-csv needs --csv FILE to write the merged gradebook to")
+        texts = outputs.read_files([Path(p) for p in args.merge_csv])
+        outputs.write_file(Path(args.csv), exporters.merge_gradebooks(texts))
+        return 0
+    if not args.submissions or args.hidden < 0:
+        raise UsageError("give the submissions to grade (folders or .zip files), --hidden N ≥ 0")
+    if args.format != "json" and not args.out:
+        raise UsageError(f"--format {args.format} writes files: give --out DIR")
+    options = grade.GradeOptions(
+        course=Path(args.course) if args.course else None,
+        require_isolation=not args.allow_no_isolation,
+        secret=args.secret or grading_secret(),
+        hidden_runs=args.hidden,
+    )
+    if options.require_isolation:
+        from slamcourse.engine import diagnostics
+
+        if diagnostics(_settings(args))["isolation"] != "namespaces":
+            raise UsageError("no namespace isolation here; grade elsewhere or --allow-no-isolation")
+    paths = grade.shard([Path(p) for p in args.submissions], args.shard)
+    tty = sys.stderr.isatty()
+
+    def bar(done: int, total: int, result: grade.SubmissionGrade) -> None:
+        if tty:
+            end = "\n" if done == total else ""
+            print(
+                "\r" + grade.bar_line(done, total, label=result.submission),
+                end=end,
+                file=sys.stderr,
+                flush=True,
+            )
+
+    results = grade.grade_all(paths, options, jobs=args.jobs, on_done=bar)
+    if args.out:
+        outputs.write_results(results, paths, args.format, Path(args.out))
+    elif args.format == "json":
+        out.line(outputs.dumps([r.to_dict() for r in results]).rstrip())
+    if args.csv:
+        outputs.write_file(Path(args.csv), exporters.gradebook(results))
+    for line in grade.summary_lines(results):
+        print(line, file=sys.stderr)
+    if options.hidden_runs and not options.secret:
+        print("note: no --secret: learners could compute the hidden checks' seeds", file=sys.stderr)
+    return 0
+
+
+def cmd_stats(args: argparse.Namespace, out: Out) -> int:
+    """Solve rate, mean attempts and common misconceptions per exercise."""
+    from slamcourse.batch import stats
+
+    data = stats.statistics(stats.load_results(Path(p) for p in args.results))
+    if args.json:
+        out.json(data)
+    else:
+        out.line(stats.render_text(data))
+    return 0
+
+
+def cmd_export(args: argparse.Namespace, out: Out) -> int:
+    """Build a platform's autograder bundle (Gradescope)."""
+    from slamcourse.batch import bundle
+    from slamcourse.settings import grading_secret
+
+    secret = args.secret or grading_secret()
+    path = bundle.gradescope_bundle(
+        Path(args.out), wheel=args.wheel, course=args.course, secret=secret
+    )
+    out.line(f"Wrote {path}")
+    return 0
+
+
 def _environment_help() -> str:
     from slamcourse.settings import ENVIRONMENT
 
@@ -722,6 +814,55 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
     p = add("plot", cmd_plot, "write the picture of an exercise (your numbers) as SVG")
     p.add_argument("exercise", metavar="ID")
     p.add_argument("--out", metavar="FILE.svg", help="write to FILE.svg (default: stdout)")
+
+    p = add(
+        "submit",
+        cmd_submit,
+        "write your submission: answers, code files, seeds (a .zip or a folder)",
+    )
+    p.add_argument("--out", default="submission.zip", metavar="PATH", help="default submission.zip")
+    p.add_argument(
+        "--learner", metavar="NAME", help="your name or id (default: derived from your seed)"
+    )
+    p = add("grade", cmd_grade, "grade submissions in batch (exit 0 whenever grading ran)")
+    p.add_argument("submissions", metavar="SUBMISSION", nargs="*", help="folders or .zip files")
+    p.add_argument("--jobs", type=int, default=1, metavar="N", help="worker processes")
+    p.add_argument("--shard", metavar="K/N", help="grade every N-th submission from the K-th")
+    p.add_argument(
+        "--format",
+        default="json",
+        choices=("json", "junit", "gradescope", "exercism", "prairielearn"),
+    )
+    p.add_argument("--out", metavar="DIR", help="write results here (json: stdout without it)")
+    p.add_argument("--csv", metavar="FILE", help="also write the gradebook CSV")
+    p.add_argument(
+        "--merge-csv", nargs="+", metavar="CSV", help="merge shards' gradebooks into --csv"
+    )
+    p.add_argument(
+        "--secret", metavar="TEXT", help="seeds hidden checks (or SLAMCOURSE_GRADING_SECRET)"
+    )
+    p.add_argument(
+        "--hidden",
+        type=int,
+        default=1,
+        metavar="N",
+        help="hidden property runs per code exercise (default 1)",
+    )
+    p.add_argument(
+        "--allow-no-isolation", action="store_true", help="grade without namespace isolation"
+    )
+    p = add("stats", cmd_stats, "class statistics from grade results (files or folders)")
+    p.add_argument("results", metavar="RESULTS", nargs="+")
+    p.add_argument("--json", action="store_true")
+    p = add("export", cmd_export, "build a grading platform's autograder bundle")
+    p.add_argument("platform", choices=("gradescope",))
+    p.add_argument("--out", default="autograder.zip", metavar="PATH")
+    p.add_argument(
+        "--wheel", metavar="PATH", help="install this wheel instead of slamcourse from PyPI"
+    )
+    p.add_argument(
+        "--secret", metavar="TEXT", help="seeds hidden checks (or SLAMCOURSE_GRADING_SECRET)"
+    )
     return parser
 
 
@@ -742,6 +883,10 @@ _COMMANDS = frozenset(
         "validate",
         "serve",
         "plot",
+        "submit",
+        "grade",
+        "stats",
+        "export",
     }
 )
 

@@ -387,9 +387,11 @@ class Engine:
         *,
         source: str | None = None,
         path: Path | None = None,
+        hidden_seed: int | None = None,
     ) -> Result:
         """Grade learner code in the sandbox: ``source``, or the file ``path``, or (neither)
-        the learner's workspace file."""
+        the learner's workspace file. ``hidden_seed`` (grading mode; default: the settings')
+        also runs inputs drawn with that secret seed once the visible ones pass."""
         import hashlib
 
         from slamcourse.kinds.code import read_source
@@ -409,7 +411,7 @@ class Engine:
             filename,
             require_isolation=self.settings.require_isolation,
             spawn=self._take_worker,
-            hidden_seed=self.settings.hidden_seed,
+            hidden_seed=hidden_seed if hidden_seed is not None else self.settings.hidden_seed,
         )
         digest = hashlib.sha256(source.encode("utf-8", "replace")).hexdigest()[:16]
         where = str(path) if path is not None else filename

@@ -246,6 +246,15 @@ class Attempt:
 # --------------------------------------------------------------------------------------------
 
 
+def variant_seed_for(learner_seed: int, exercise_id: str) -> int:
+    """The variant seed a learner with ``learner_seed`` is given for ``exercise_id`` (see
+    :meth:`Progress.variant_seed`); the batch grader recomputes it to detect edited seeds."""
+    import random
+
+    stream = random.Random(f"{learner_seed}\x00{exercise_id}")
+    return 1 + stream.getrandbits(62) % VARIANT_MAX
+
+
 def default_db_path() -> Path:
     """``<default_home()>/progress.sqlite3``."""
     return default_home() / DB_FILENAME
@@ -498,10 +507,7 @@ class Progress:
         restarts and differs between learners and between exercises. (Not ``hashlib``: loading
         OpenSSL would cost every command a few milliseconds.)
         """
-        import random
-
-        stream = random.Random(f"{self._learner_seed}\x00{exercise_id}")
-        return 1 + stream.getrandbits(62) % VARIANT_MAX
+        return variant_seed_for(self._learner_seed, exercise_id)
 
     # -- exercise state ----------------------------------------------------------------------
 

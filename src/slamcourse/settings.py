@@ -11,6 +11,7 @@ choices.
 | ``SLAMCOURSE_HOME`` | ``home``: progress database and caches | ``$XDG_DATA_HOME/slamcourse`` |
 | ``SLAMCOURSE_WORKSPACE`` | ``workspace``: learners' code files | ``<home>/workspace`` when
   ``SLAMCOURSE_HOME`` is set, else ``~/slamcourse-workspace`` |
+| ``SLAMCOURSE_GRADING_SECRET`` | batch grading: seeds hidden checks | empty |
 
 This module is imported by every command, so it imports only the standard library.
 """
@@ -26,11 +27,14 @@ from pathlib import Path
 ENV_COURSE = "SLAMCOURSE_COURSE"
 ENV_HOME = "SLAMCOURSE_HOME"
 ENV_WORKSPACE = "SLAMCOURSE_WORKSPACE"
+ENV_GRADING_SECRET = "SLAMCOURSE_GRADING_SECRET"
+ENV_ALLOW_NO_ISOLATION = "SLAMCOURSE_ALLOW_NO_ISOLATION"
 ENVIRONMENT = (
     (ENV_HOME, "progress database and caches (default ~/.local/share/slamcourse)"),
     (ENV_WORKSPACE, "where your code exercise files live (default ~/slamcourse-workspace)"),
     (ENV_COURSE, "use another course folder instead of the bundled one"),
     ("SLAMCOURSE_SANDBOX", "auto | namespaces | rlimits: how learner code is isolated"),
+    (ENV_GRADING_SECRET, "batch grading: the instructor's secret that seeds hidden checks"),
     ("NO_COLOR", "plain output"),
 )
 
@@ -108,6 +112,17 @@ class Settings:
     def cache(self) -> Path:
         """``<home>/cache``: parsed YAML and recorded test inputs, keyed by content."""
         return self.home / "cache"
+
+
+def grading_secret(environ: Mapping[str, str] = os.environ) -> str:
+    """The batch grader's secret (``$SLAMCOURSE_GRADING_SECRET``; empty when unset)."""
+    return environ.get(ENV_GRADING_SECRET, "")
+
+
+def isolation_waived(environ: Mapping[str, str] = os.environ) -> bool:
+    """``SLAMCOURSE_ALLOW_NO_ISOLATION=1``: an entry point without a command line (the
+    PrairieLearn grader) may grade without namespaces, its container being the sandbox."""
+    return environ.get(ENV_ALLOW_NO_ISOLATION) == "1"
 
 
 _active_cache: Path | None = None

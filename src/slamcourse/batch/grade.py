@@ -1,0 +1,550 @@
+"""Grading a class's submissions: each against the variants its learner was given.
+
+The batch grader is a face of the engine: per submission it opens a fresh
+:class:`~slamcourse.engine.Engine` in a temporary home (``record=False``, isolation required
+unless relaxed) and renders what ``Engine.submit`` / ``Engine.submit_code`` return. Its only
+rules are about submissions themselves (is it readable, made for this course, are its variant
+seeds the learner's own) and the hidden checks of code exercises (below). A submission's problem
+becomes that submission's error; the batch goes on.
+
+Hidden checks: in grading mode a code exercise that passes its visible check is run again on
+``hidden_runs`` further property tests, each drawn with a seed derived from the grader's secret,
+the learner id and the exercise (:func:`hidden_seed`); the learner's local check always uses
+the exercise's fixed seed, so these inputs are new to it. Only the number of failed hidden runs
+is reported, never their inputs.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import hmac
+import re
+import shutil
+import tempfile
+import time
+from collections.abc import Callable, Sequence
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from slamcourse.batch.submission import (
+    LEARNER_ID_PREFIX,
+    Answer,
+    Limits,
+    Submission,
+    SubmissionError,
+    course_hash,
+    learner_id,
+    read,
+)
+from slamcourse.errors import SlamcourseError, UsageError
+
+if TYPE_CHECKING:
+    from slamcourse.engine import Engine
+
+RESULT_FORMAT = 1
+TIMING_FIELDS = frozenset({"seconds"})
+"""Keys whose values change from run to run; everything else is deterministic."""
+MAX_ANSWER = 10_000
+"""Characters of a text answer the grader reads (answers are numbers, vectors, formulas)."""
+MAX_FEEDBACK = 4000
+"""Characters of feedback kept per exercise (a flood of output stops here)."""
+
+
+@dataclass(frozen=True)
+class GradeOptions:
+    """How a batch is graded (the same for every submission of the batch)."""
+
+    course: Path | None = None
+    require_isolation: bool = True
+    secret: str = ""
+    hidden_runs: int = 1
+    limits: Limits = field(default_factory=Limits)
+
+
+@dataclass(frozen=True)
+class ExerciseGrade:
+    """One exercise of one submission. ``status`` is a verdict status or ``missing``;
+    ``hidden`` is ``{"runs": n, "failed": k}`` for code exercises whose hidden checks ran."""
+
+    exercise: str
+    title: str
+    kind: str
+    chapter: int
+    variant: int
+    status: str
+    score: float
+    feedback: str
+    max_score: float = 1.0
+    misconception: str | None = None
+    attempts: int | None = None
+    hidden: dict[str, int] | None = None
+    command: str | None = None  # how the learner reproduces the visible check locally
+    tests: list[dict[str, Any]] = field(default_factory=list)
+    seconds: float = 0.0
+
+    @property
+    def passed(self) -> bool:
+        return self.status == "passed"
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "exercise": self.exercise,
+            "title": self.title,
+            "kind": self.kind,
+            "chapter": self.chapter,
+            "variant": self.variant,
+            "status": self.status,
+            "score": self.score,
+            "max_score": self.max_score,
+            "feedback": self.feedback,
+            "misconception": self.misconception,
+            "attempts": self.attempts,
+            "hidden": self.hidden,
+            "command": self.command,
+            "tests": self.tests,
+            "seconds": self.seconds,
+        }
+
+    @classmethod
+    def from_dict(cls, d: dict[str, Any]) -> ExerciseGrade:
+        return cls(**{k: d[k] for k in cls.__dataclass_fields__ if k in d})
+
+
+@dataclass(frozen=True)
+class SubmissionGrade:
+    """One submission: ``status`` ``graded`` (whatever the scores) or ``error`` (it could not be
+    graded: ``error`` says why, ``exercises`` is empty)."""
+
+    submission: str
+    learner: str | None
+    status: str
+    exercises: tuple[ExerciseGrade, ...] = ()
+    error: str | None = None
+    warnings: tuple[str, ...] = ()
+    seconds: float = 0.0
+    fingerprint: str | None = None  # learner_id(learner seed): the same seed under two names
+
+    @property
+    def score(self) -> float:
+        return round(sum(e.score for e in self.exercises), 6)
+
+    @property
+    def max_score(self) -> float:
+        return sum(e.max_score for e in self.exercises)
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "format": RESULT_FORMAT,
+            "submission": self.submission,
+            "learner": self.learner,
+            "fingerprint": self.fingerprint,
+            "status": self.status,
+            "error": self.error,
+            "warnings": list(self.warnings),
+            "score": self.score,
+            "max_score": self.max_score,
+            "exercises": [e.to_dict() for e in self.exercises],
+            "seconds": self.seconds,
+        }
+
+    @classmethod
+    def from_dict(cls, d: dict[str, Any]) -> SubmissionGrade:
+        if d.get("format") != RESULT_FORMAT or "submission" not in d:
+            raise UsageError(f"not a slamcourse grade result (format {d.get('format')!r})")
+        return cls(
+            submission=d["submission"],
+            learner=d.get("learner"),
+            status=d["status"],
+            exercises=tuple(ExerciseGrade.from_dict(e) for e in d.get("exercises", [])),
+            error=d.get("error"),
+            warnings=tuple(d.get("warnings", [])),
+            seconds=d.get("seconds", 0.0),
+            fingerprint=d.get("fingerprint"),
+        )
+
+
+def without_timing(data: Any) -> Any:
+    """``data`` with every timing field removed (what determinism compares)."""
+    if isinstance(data, dict):
+        return {k: without_timing(v) for k, v in data.items() if k not in TIMING_FIELDS}
+    if isinstance(data, list):
+        return [without_timing(v) for v in data]
+    return data
+
+
+# ------------------------------------------------------------------------------ selection
+
+
+def shard(paths: Sequence[Path], spec: str | None) -> list[Path]:
+    """Paths sorted; with ``K/N`` every N-th one starting at the (K-1)-th (K in 1..N)."""
+    ordered = sorted(paths, key=lambda p: str(p))
+    if not spec:
+        return ordered
+    m = re.fullmatch(r"(\d+)/(\d+)", spec.strip())
+    if not m or not 1 <= int(m[1]) <= int(m[2]):
+        raise UsageError(f"--shard {spec}: write K/N with 1 ≤ K ≤ N, e.g. --shard 2/4")
+    k, n = int(m[1]), int(m[2])
+    return ordered[k - 1 :: n]
+
+
+def output_names(paths: Sequence[Path]) -> list[str]:
+    """A safe, unique file-name stem per submission, from its path as the grader was given it
+    (never from the submission's content)."""
+    names: list[str] = []
+    seen: dict[str, int] = {}
+    for path in paths:
+        stem = path.name[:-4] if path.name.lower().endswith(".zip") else path.name
+        stem = re.sub(r"[^A-Za-z0-9_.-]+", "_", stem).strip("._") or "submission"
+        count = seen.get(stem, 0) + 1
+        seen[stem] = count
+        names.append(stem if count == 1 else f"{stem}-{count}")
+    return names
+
+
+# ------------------------------------------------------------------------------ hidden checks
+
+
+def hidden_seed(secret: str, learner: str, exercise_id: str, run: int) -> int:
+    """The Hypothesis seed of hidden run ``run``: 32 bits of HMAC-SHA256(secret, learner, id,
+    run). With a secret only the instructor knows, no learner can predict it."""
+    from slamcourse.grading.properties import exercise_seed
+
+    message = f"{learner}\0{exercise_id}\0{run}".encode()
+    digest = hmac.new(secret.encode(), message, hashlib.sha256).digest()
+    seed = int.from_bytes(digest[:4], "little")
+    return seed if seed != exercise_seed(exercise_id) else seed ^ 1
+
+
+def _hidden_checks(
+    engine: Engine, exercise_id: str, source: str, learner: str, options: GradeOptions
+) -> tuple[int, bool]:
+    """Failed hidden runs, and whether one of them was the grader's own fault.
+
+    Each run is the engine's grading mode: the visible inputs (replayed), then as many more
+    drawn with a seed derived from the instructor's secret, which the learner never met."""
+    failed, grader_fault = 0, False
+    for run in range(options.hidden_runs):
+        verdict = engine.submit_code(
+            exercise_id,
+            source=source,
+            hidden_seed=hidden_seed(options.secret, learner, exercise_id, run),
+        ).verdict
+        if not verdict.passed:
+            failed += 1
+            grader_fault = grader_fault or verdict.status == "error"
+    return failed, grader_fault
+
+
+# ------------------------------------------------------------------------------ one submission
+
+_COURSE_HASHES: dict[Path, str] = {}
+
+
+def _course_identity(root: Path) -> str:
+    if root not in _COURSE_HASHES:
+        _COURSE_HASHES[root] = course_hash(root)
+    return _COURSE_HASHES[root]
+
+
+def _check_claims(sub: Submission, engine: Engine, root: Path, name: str) -> list[str]:
+    """Raise for a submission made for another course or with edited seeds; return warnings."""
+    from slamcourse import __version__
+    from slamcourse.progress import variant_seed_for
+
+    m = sub.manifest
+    ours = _course_identity(root)
+    if m.course_hash != ours:
+        raise SubmissionError(
+            f"{name} was made for course version {m.course_version} ({m.course_hash[:19]}…), "
+            f"not the course this grader has ({ours[:19]}…); grade it with that course "
+            "(--course) or ask the learner to submit again"
+        )
+    if m.learner_name is None and m.learner_id != learner_id(m.learner_seed):
+        raise SubmissionError(
+            f"{name}: learner.id {m.learner_id} does not belong to learner.seed "
+            f"(an unnamed learner's id is {LEARNER_ID_PREFIX}… derived from the seed); "
+            "the manifest was edited"
+        )
+    if m.learner_name is not None and m.learner_id != m.learner_name:
+        raise SubmissionError(f"{name}: learner.id must equal learner.name when a name is given")
+    warnings: list[str] = []
+    known = set(engine.course.exercise_ids)
+    for answer in m.answers:
+        if answer.exercise not in known:
+            warnings.append(f"{answer.exercise} is not an exercise of this course; ignored")
+            continue
+        spec = engine.exercise(answer.exercise)
+        own = variant_seed_for(m.learner_seed, spec.id) if spec.has_variants else 0
+        if spec.kind == "code":
+            own = 0
+        if answer.variant != own:
+            raise SubmissionError(
+                f"{name}: {answer.exercise} claims variant {answer.variant}, but this learner "
+                f"was given variant {own} (variant seeds derive from learner.seed and the "
+                "exercise id); the manifest was edited"
+            )
+    if m.engine != __version__:
+        warnings.append(f"made with slamcourse {m.engine}; graded with {__version__}")
+    return warnings
+
+
+def _command(answer: Answer) -> str:
+    if answer.file is not None:
+        return f"slamcourse check {answer.exercise} --file {answer.file}"
+    text = (answer.text or "").replace("'", "'\\''")
+    return f"slamcourse check {answer.exercise} --seed {answer.variant} --answer='{text[:200]}'"
+
+
+def _grade_answer(
+    engine: Engine, sub: Submission, answer: Answer, options: GradeOptions
+) -> ExerciseGrade:
+    spec = engine.exercise(answer.exercise)
+    chapter = engine.course.chapter_of(spec.id).number
+    start = time.perf_counter()
+    source = ""
+    try:
+        if answer.file is not None:
+            if spec.kind != "code":
+                raise SubmissionError(f"{spec.id} is a {spec.kind} exercise: answer it with text")
+            source = _text(sub.source(answer), answer.file)
+            result = engine.submit_code(spec.id, source=source)
+        else:
+            if spec.kind == "code":
+                raise SubmissionError(f"{spec.id} is a code exercise: hand in a file")
+            if len(answer.text or "") > MAX_ANSWER:
+                raise SubmissionError(
+                    f"{spec.id}: the answer is longer than {MAX_ANSWER} characters; not graded"
+                )
+            result = engine.submit(spec.id, answer.text or "", seed=answer.variant)
+    except SlamcourseError as exc:  # the answer's own problem, or the grader's (said as such)
+        ours = not isinstance(exc, SubmissionError)
+        return ExerciseGrade(
+            spec.id,
+            spec.title,
+            spec.kind,
+            chapter,
+            answer.variant,
+            "error" if ours else "invalid",
+            0.0,
+            f"Not graded (a problem on the grader's side): {exc}" if ours else str(exc),
+            attempts=answer.attempts,
+            command=_command(answer),
+            seconds=time.perf_counter() - start,
+        )
+    verdict = result.verdict
+    status, score, feedback = verdict.status, verdict.score, _cap(verdict.feedback)
+    hidden = None
+    if spec.kind == "code" and options.hidden_runs > 0:
+        runs = options.hidden_runs
+        checks = f"{runs} hidden check{'s' if runs != 1 else ''}"
+        if verdict.passed:
+            failed, fault = _hidden_checks(
+                engine, spec.id, source, sub.manifest.learner_id, options
+            )
+            hidden = {"runs": runs, "failed": failed}
+            if fault:
+                status, score = "error", 0.0
+                feedback += f"\n\nThe {checks} could not all run (a problem on the grader's side)."
+            elif failed:
+                status, score = "failed", 0.0
+                feedback += (
+                    f"\n\n{failed} of {checks} failed: property tests on inputs your local "
+                    "check never drew. Your function is right on the inputs you saw but not "
+                    "on all the inputs the prompt allows; look for a case you did not handle."
+                )
+            else:
+                feedback += f"\n\nThe {checks} (inputs your local check never drew) passed too."
+        else:
+            hidden = {"runs": 0, "failed": 0}
+            feedback += f"\n\nThe {checks} run only once the visible check passes."
+    return ExerciseGrade(
+        spec.id,
+        spec.title,
+        spec.kind,
+        chapter,
+        answer.variant,
+        status,
+        score,
+        feedback,
+        misconception=verdict.misconception,
+        attempts=answer.attempts,
+        hidden=hidden,
+        command=_command(answer),
+        tests=result.tests,
+        seconds=time.perf_counter() - start,
+    )
+
+
+def _text(data: bytes, name: str) -> str:
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        line = data.count(b"\n", 0, exc.start) + 1
+        raise SubmissionError(
+            f"{name}:{line}: byte {data[exc.start]:#04x} is not UTF-8 text; save the file as UTF-8"
+        ) from None
+
+
+def _cap(text: str) -> str:
+    if len(text) <= MAX_FEEDBACK:
+        return text
+    return text[:MAX_FEEDBACK] + f"\n\n… ({len(text) - MAX_FEEDBACK} more characters cut)"
+
+
+def grade_submission(path: Path, options: GradeOptions) -> SubmissionGrade:
+    """Grade one submission in a fresh engine and temporary home; never raises for anything
+    the submission contains (its problems become ``status: error``)."""
+    from slamcourse.course.locate import course_root
+    from slamcourse.engine import Engine
+    from slamcourse.settings import Settings
+
+    start = time.perf_counter()
+    name = path.name
+    learner: str | None = None
+    home = Path(tempfile.mkdtemp(prefix="slamcourse-grade-"))
+    try:
+        sub = read(path, options.limits)
+        learner = sub.manifest.learner_id
+        root = course_root(options.course)
+        settings = Settings(
+            home=home,
+            workspace=home / "workspace",
+            course=root,
+            require_isolation=options.require_isolation,
+            record=False,
+        )
+        code = any(a.file is not None for a in sub.manifest.answers)
+        with Engine.open(settings, with_progress=False, warm_sandbox=code) as engine:
+            warnings = _check_claims(sub, engine, root, name)
+            given = {a.exercise: a for a in sub.manifest.answers}
+            grades: list[ExerciseGrade] = []
+            for ex in engine.course.exercise_ids:
+                if ex in given:
+                    grades.append(_grade_answer(engine, sub, given[ex], options))
+                else:
+                    spec = engine.exercise(ex)
+                    grades.append(
+                        ExerciseGrade(
+                            ex,
+                            spec.title,
+                            spec.kind,
+                            engine.course.chapter_of(ex).number,
+                            0,
+                            "missing",
+                            0.0,
+                            "No answer was handed in for this exercise.",
+                        )
+                    )
+        return SubmissionGrade(
+            name,
+            learner,
+            "graded",
+            tuple(grades),
+            None,
+            tuple(warnings),
+            time.perf_counter() - start,
+            fingerprint=learner_id(sub.manifest.learner_seed),
+        )
+    except SlamcourseError as exc:
+        return SubmissionGrade(
+            name, learner, "error", error=str(exc), seconds=time.perf_counter() - start
+        )
+    except Exception as exc:  # a grader bug must not stop the batch: said as such
+        return SubmissionGrade(
+            name,
+            learner,
+            "error",
+            error=f"internal grader error ({type(exc).__name__}: {exc}); please report it",
+            seconds=time.perf_counter() - start,
+        )
+    finally:
+        shutil.rmtree(home, ignore_errors=True)
+
+
+# ------------------------------------------------------------------------------ a batch
+
+
+def duplicate_learners(grades: Sequence[SubmissionGrade]) -> list[str]:
+    """Warnings for a learner id, or a learner seed (under different names), handed in more
+    than once in a batch: two learners with one seed share every variant."""
+    warnings = []
+    for key in ("learner", "fingerprint"):
+        groups: dict[str, list[SubmissionGrade]] = {}
+        for g in grades:
+            value = getattr(g, key)
+            if value is not None:
+                groups.setdefault(value, []).append(g)
+        for who, subs in sorted(groups.items()):
+            names = ", ".join(g.submission for g in subs)
+            if key == "learner" and len(subs) > 1:
+                warnings.append(f"learner {who} appears in {len(subs)} submissions: {names}")
+            elif key == "fingerprint" and len({g.learner for g in subs}) > 1:
+                warnings.append(f"one learner seed is claimed by {len(subs)} learners: {names}")
+    return warnings
+
+
+def preflight(options: GradeOptions) -> None:
+    """Raise when no submission could be graded: the course is missing or its chapter index is
+    broken (a usage or course error, not one error per submission)."""
+    from slamcourse.course.loader import load_course
+    from slamcourse.course.locate import course_root
+
+    root = course_root(options.course)
+    if not load_course(root).exercise_ids:
+        raise UsageError(f"the course at {root} has no exercises to grade")
+    _course_identity(root)
+
+
+def grade_all(
+    paths: Sequence[Path],
+    options: GradeOptions,
+    *,
+    jobs: int = 1,
+    on_done: Callable[[int, int, SubmissionGrade], None] | None = None,
+) -> list[SubmissionGrade]:
+    """Grade ``paths`` (results in the order given); ``jobs`` > 1 grades in worker processes."""
+    if jobs < 1:
+        raise UsageError("--jobs must be at least 1")
+    preflight(options)
+    results: list[SubmissionGrade | None] = [None] * len(paths)
+    total = len(paths)
+    if jobs == 1 or total <= 1:
+        for i, path in enumerate(paths):
+            results[i] = grade_submission(path, options)
+            if on_done:
+                on_done(i + 1, total, results[i])  # type: ignore[arg-type]
+    else:
+        import multiprocessing
+
+        context = multiprocessing.get_context("forkserver")
+        with ProcessPoolExecutor(max_workers=jobs, mp_context=context) as pool:
+            futures = {pool.submit(grade_submission, p, options): i for i, p in enumerate(paths)}
+            for done, future in enumerate(as_completed(futures), start=1):
+                i = futures[future]
+                try:
+                    results[i] = future.result()
+                except Exception as exc:  # the worker process itself died
+                    results[i] = SubmissionGrade(
+                        paths[i].name, None, "error", error=f"the grading process failed: {exc}"
+                    )
+                if on_done:
+                    on_done(done, total, results[i])  # type: ignore[arg-type]
+    return [r for r in results if r is not None]
+
+
+def summary_lines(grades: Sequence[SubmissionGrade]) -> list[str]:
+    """One line per submission (``learner  submission  score/max`` or its error), then the
+    batch's warnings."""
+    lines = []
+    for g in grades:
+        score = f"{g.score:g}/{g.max_score:g}" if g.status == "graded" else f"error: {g.error}"
+        lines.append(f"{g.learner or '?'}  {g.submission}  {score}")
+    return lines + [f"warning: {w}" for w in duplicate_learners(grades)]
+
+
+def bar_line(done: int, total: int, width: int = 30, label: str = "") -> str:
+    """``[#####.....] 12/40 label``: one line of the progress bar the terminal face draws."""
+    filled = width * done // total if total else width
+    return f"[{'#' * filled}{'.' * (width - filled)}] {done}/{total} {label}".rstrip()

@@ -1,0 +1,268 @@
+"""Grading a small class: each verdict, hidden checks, determinism, one bad submission never
+stops the batch, and the CLI's exit code says only whether grading ran."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from slamcourse.batch.grade import (
+    GradeOptions,
+    SubmissionGrade,
+    grade_all,
+    grade_submission,
+    shard,
+    without_timing,
+)
+from slamcourse.cli import main
+from tests.batch.conftest import CODE_ID, COURSE, SOLUTION, make_submission, right_answer
+from tests.conftest import FIXTURE_COURSE
+
+WRONG_CODE = (
+    "import math\ndef range_bearing(dx, dy, theta):\n"
+    "    return dx*dx + dy*dy, math.atan2(dy, dx) - theta\n"
+)
+CRASH_CODE = "import os\ndef range_bearing(dx, dy, theta):\n    os._exit(3)\n"
+FLOOD_CODE = (
+    "import math\ndef range_bearing(dx, dy, theta):\n"
+    "    print('x' * 200_000)\n    return math.hypot(dx, dy), math.atan2(dy, dx) - theta\n"
+)
+
+
+@pytest.fixture(scope="module")
+def graded(tmp_path_factory: pytest.TempPathFactory) -> tuple[list[Path], list[SubmissionGrade]]:
+    """Five submissions graded once with two worker processes."""
+    root = tmp_path_factory.mktemp("class")
+    right = {ex: right_answer(11, ex) for ex in ("basics/distance", "basics/count")}
+    paths = [
+        make_submission(root / "a-right", 11, right, SOLUTION),
+        make_submission(
+            root / "b-wrong",
+            12,
+            {"basics/distance": "1e6", "basics/count": str(2 * _n(12))},
+            WRONG_CODE,
+        ),
+        make_submission(root / "c-crash", 13, {"basics/distance": "abc"}, CRASH_CODE),
+        make_submission(root / "d-flood", 14, {}, FLOOD_CODE),
+        root / "e-missing.zip",
+    ]
+    return paths, grade_all(paths, GradeOptions(course=FIXTURE_COURSE), jobs=2)
+
+
+def _n(learner_seed: int) -> int:
+    from slamcourse.course.variants import variant
+    from tests.batch.conftest import seed_of
+
+    spec = COURSE.exercise("basics/count")
+    return int(variant(spec, seed_of(learner_seed, "basics/count")).params["n"])
+
+
+def by_id(grade: SubmissionGrade) -> dict[str, Any]:
+    return {e.exercise: e for e in grade.exercises}
+
+
+def test_results_come_in_the_order_given(graded: Any) -> None:
+    paths, results = graded
+    assert [r.submission for r in results] == [p.name for p in paths]
+
+
+def test_a_right_submission_scores_its_answers(graded: Any) -> None:
+    right = by_id(graded[1][0])
+    assert right["basics/distance"].status == "passed"
+    assert right["basics/count"].status == "passed"
+    code = right[CODE_ID]
+    assert code.status == "passed", code.feedback
+    assert code.hidden == {"runs": 1, "failed": 0}
+    assert "hidden check" in code.feedback
+    assert right["basics/heading"].status == "missing"
+    assert graded[1][0].score == 3.0
+    assert graded[1][0].max_score == len(COURSE.exercise_ids)
+
+
+def test_wrong_answers_fail_with_the_engines_feedback(graded: Any) -> None:
+    wrong = by_id(graded[1][1])
+    assert wrong["basics/distance"].status == "failed"
+    assert wrong["basics/count"].misconception == "forgot-pose"
+    assert wrong[CODE_ID].status == "failed"
+    assert wrong[CODE_ID].misconception == "squared"
+    assert wrong[CODE_ID].hidden == {"runs": 0, "failed": 0}
+    assert wrong[CODE_ID].tests and wrong[CODE_ID].tests[0]["status"] == "failed"
+
+
+def test_unreadable_answers_and_crashing_code_are_verdicts(graded: Any) -> None:
+    crash = by_id(graded[1][2])
+    assert crash["basics/distance"].status == "invalid"
+    assert crash[CODE_ID].status == "failed"
+    assert "stopped the grader's worker" in crash[CODE_ID].feedback
+
+
+def test_flooding_output_is_cut_and_graded(graded: Any) -> None:
+    flood = by_id(graded[1][3])
+    assert flood[CODE_ID].status == "passed"
+    assert len(json.dumps(graded[1][3].to_dict())) < 50_000
+
+
+def test_a_missing_file_is_that_submissions_error(graded: Any) -> None:
+    missing = graded[1][4]
+    assert missing.status == "error"
+    assert "no such file" in (missing.error or "")
+
+
+def test_grading_is_deterministic(graded: Any) -> None:
+    paths, first = graded
+    again = grade_all(paths[:1], GradeOptions(course=FIXTURE_COURSE), jobs=1)
+    assert without_timing(again[0].to_dict()) == without_timing(first[0].to_dict())
+    assert "seconds" in first[0].to_dict()
+
+
+def memorised_source() -> str:
+    """A 'solution' that knows the answers of exactly the inputs the local check draws."""
+    from slamcourse.course import reference
+    from slamcourse.grading.properties import TrustedCallee, exercise_seed, run
+    from slamcourse.kinds import get_kind
+
+    spec = COURSE.exercise(CODE_ID)
+    opts = spec.options
+    ref = reference.function(spec, spec.reference or "", spec.reference_line)
+    outcome = run(
+        strategy=get_kind("code").strategy(spec),  # type: ignore[attr-defined]
+        examples=opts.examples,
+        signature=opts.signature,
+        returns=opts.returns,
+        tolerance=opts.tolerance,
+        reference=ref,
+        call=TrustedCallee(ref).call,
+        max_examples=opts.max_examples,
+        seed=exercise_seed(spec.id),
+    )
+    table = {
+        (float(d["dx"]), float(d["dy"]), float(d["theta"])): tuple(float(v) for v in ref(**d))
+        for d in [*outcome.drawn, *opts.examples]
+    }
+    return (
+        f"TABLE = {table!r}\n"
+        "def range_bearing(dx, dy, theta):\n"
+        "    return TABLE.get((float(dx), float(dy), float(theta)), (0.0, 0.0))\n"
+    )
+
+
+def test_hidden_checks_catch_code_fitted_to_the_local_inputs(tmp_path: Path) -> None:
+    path = make_submission(tmp_path / "fitted", 21, {}, memorised_source())
+    code = by_id(grade_submission(path, GradeOptions(course=FIXTURE_COURSE)))[CODE_ID]
+    assert code.status == "failed"
+    assert code.score == 0.0
+    assert code.hidden == {"runs": 1, "failed": 1}
+    assert "1 of 1 hidden check failed" in code.feedback
+    assert "TABLE" not in code.feedback and "dx=" not in code.feedback  # no hidden input shown
+
+
+@pytest.mark.slow
+def test_a_hanging_function_times_out(tmp_path: Path) -> None:
+    hang = "def range_bearing(dx, dy, theta):\n    while True:\n        pass\n"
+    path = make_submission(tmp_path / "hang", 31, {}, hang)
+    code = by_id(grade_submission(path, GradeOptions(course=FIXTURE_COURSE)))[CODE_ID]
+    assert code.status == "timeout"
+
+
+def test_shards_partition_the_sorted_paths() -> None:
+    paths = [Path(f"s{i}") for i in (3, 1, 4, 0, 2)]
+    parts = [shard(paths, f"{k}/2") for k in (1, 2)]
+    assert parts == [[Path("s0"), Path("s2"), Path("s4")], [Path("s1"), Path("s3")]]
+    with pytest.raises(Exception, match="K/N"):
+        shard(paths, "3/2")
+
+
+def test_cli_grades_writes_outside_nothing_and_exits_0(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    sub = make_submission(tmp_path / "in" / "x", 41, {"basics/distance": "1"})
+    bad = tmp_path / "in" / "bad.zip"
+    bad.write_bytes(b"PK\x03\x04 truncated")
+    out = tmp_path / "out"
+    before = sorted(p for p in tmp_path.rglob("*"))
+    code = main(
+        [
+            "--course",
+            str(FIXTURE_COURSE),
+            "grade",
+            str(sub),
+            str(bad),
+            "--format",
+            "gradescope",
+            "--out",
+            str(out),
+            "--csv",
+            str(tmp_path / "g.csv"),
+        ]
+    )
+    assert code == 0
+    after = sorted(p for p in tmp_path.rglob("*"))
+    new = [p for p in after if p not in before]
+    assert all(p == tmp_path / "g.csv" or out in p.parents or p == out for p in new), new
+    bad_result = json.loads((out / "bad" / "results.json").read_text())
+    assert "not a readable zip" in bad_result["output"]
+    rows = (tmp_path / "g.csv").read_text().splitlines()
+    assert rows[2].startswith("learner-") and ",x," in rows[2]
+    err = capsys.readouterr().err
+    assert err.count("\n") == 3 and "no --secret" in err
+
+
+def test_cli_refuses_to_run_without_submissions_or_a_course(tmp_path: Path) -> None:
+    assert main(["--course", str(FIXTURE_COURSE), "grade"]) == 2
+    sub = make_submission(tmp_path / "x", 51, {})
+    assert main(["--course", str(tmp_path / "nowhere"), "grade", str(sub)]) == 2
+    broken = tmp_path / "broken"
+    (broken / "exercises").mkdir(parents=True)
+    (broken / "chapters").mkdir()
+    (broken / "chapters" / "01-x.md").write_text("---\nid: x\n---\n```{exercise} x/none\n```\n")
+    assert main(["--course", str(broken), "grade", str(sub)]) >= 2
+
+
+def test_the_bundled_course(tmp_path: Path) -> None:
+    """The one test on the real course: a learner's submission made by `submit`, graded."""
+    from slamcourse import __version__
+    from slamcourse.batch.submission import build, write
+    from slamcourse.engine import Engine
+    from slamcourse.settings import Settings
+
+    settings = Settings.from_env(home=tmp_path / "home")
+    with Engine.open(settings) as engine:
+        first = next(e for e in engine.course.exercise_ids if not engine.is_code(e))
+        engine.submit(first, "0")
+        sub = build(engine, learner_name="ada")
+    assert sub.manifest.course_version == __version__
+    path = write(sub, tmp_path / "ada.zip")
+    result = grade_submission(path, GradeOptions(hidden_runs=0))
+    assert result.status == "graded", result.error
+    graded = {e.exercise: e for e in result.exercises}
+    assert graded[first].status in ("failed", "invalid", "passed")
+    assert graded[first].variant == sub.manifest.answers[0].variant
+    assert len(graded) == len(engine.course.exercise_ids)
+
+
+def test_progress_bar_line() -> None:
+    from slamcourse.batch.grade import bar_line
+
+    assert bar_line(0, 4, width=8) == "[........] 0/4"
+    assert bar_line(3, 4, width=8, label="s3.zip") == "[######..] 3/4 s3.zip"
+
+
+def test_grade_refuses_without_isolation_unless_allowed(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    import slamcourse.engine
+
+    monkeypatch.setattr(slamcourse.engine, "diagnostics", lambda s: {"isolation": "rlimits"})
+    sub = make_submission(tmp_path / "x", 51, {"basics/distance": "1"})
+    args = ["--course", str(FIXTURE_COURSE), "grade", str(sub), "--out", str(tmp_path / "o")]
+    assert main(args) == 2
+    assert not (tmp_path / "o").exists()
+    assert main([*args, "--allow-no-isolation", "--csv", str(tmp_path / "a.csv")]) == 0
+    assert (tmp_path / "o" / "x.json").is_file()
+    merged = tmp_path / "all.csv"
+    assert main(["grade", "--merge-csv", str(tmp_path / "a.csv"), "--csv", str(merged)]) == 0
+    assert merged.read_text() == (tmp_path / "a.csv").read_text()
+    assert main(["grade", "--merge-csv", str(tmp_path / "nope.csv"), "--csv", str(merged)]) == 2
