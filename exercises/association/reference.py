@@ -165,7 +165,7 @@ def nearest_neighbour_no_gate(
     z: Vector, landmarks: Sequence[Vector], s00: float, s11: float, gate: float
 ) -> int:
     """Wrong: the Mahalanobis-nearest candidate, even when it is outside the gate."""
-    if not landmarks:
+    if len(landmarks) == 0:
         return -1
     return min(range(len(landmarks)), key=lambda j: _d2(z, landmarks[j], s00, s11))
 
@@ -185,26 +185,29 @@ def nearest_neighbour_inputs() -> Any:
 
     Candidates are drawn through their whitened innovation ``u`` (``ν = u·σ``), so every ``d²``
     lies in [0, 32]. Predicted ranges stay within [0.5, 50] m (the measured range is drawn in
-    [4.5, 46] m, at most 4 σ ≤ 4 m away) and bearings within ±1.4 rad, so no range is negative
-    and no innovation ever needs wrapping.
-    ``S`` is strongly anisotropic (range σ of 0.2–1 m, bearing σ of 0.01–0.1 rad), which is
-    what makes the Euclidean distance pick the wrong candidate. Draws with a near tie between
-    the two best candidates inside the gate, or a ``d²`` within 5 % of the gate, are rejected.
+    [4.5, 46] m; a candidate's range is clipped to that interval) and bearings
+    within ±1.4 rad, so no range is negative and no innovation ever needs wrapping.
+    ``S`` is strongly anisotropic (range σ of 0.2–1 m, or in a third of the draws 1–10 m, as
+    the prompt allows any positive variance; bearing σ of 0.01–0.1 rad), which is what makes
+    the Euclidean distance pick the wrong candidate. Draws with a near tie between the two best
+    candidates inside the gate, or a ``d²`` within 5 % of the gate, are rejected.
     """
     from hypothesis import strategies as st
 
     @st.composite
     def draw(draw: Any) -> dict[str, Any]:
-        s00 = draw(st.floats(0.04, 1.0))
+        s00 = draw(st.one_of(st.floats(0.04, 1.0), st.floats(0.04, 1.0), st.floats(1.0, 100.0)))
         s11 = draw(st.floats(1e-4, 0.01))
         gate = draw(st.sampled_from([4.61, 5.99, 9.21]))  # χ²₂ at 90 %, 95 %, 99 %
         z = [draw(st.floats(4.5, 46.0)), draw(st.floats(-1.0, 1.0))]
         count = draw(st.integers(0, 6))
         landmarks = []
+        sigma = math.sqrt(s00)
         for _ in range(count):
             u0 = draw(st.floats(-4.0, 4.0))
             u1 = draw(st.floats(-4.0, 4.0))
-            landmarks.append([z[0] - u0 * math.sqrt(s00), z[1] - u1 * math.sqrt(s11)])
+            predicted = min(max(z[0] - u0 * sigma, 0.5), 50.0)
+            landmarks.append([predicted, z[1] - u1 * math.sqrt(s11)])
         return {"z": z, "landmarks": landmarks, "s00": s00, "s11": s11, "gate": gate}
 
     return draw().filter(_unambiguous)
@@ -338,3 +341,36 @@ def mistake_joint_sum_of_gates(pairings: int, confidence: float) -> float:
 def mistake_joint_single_gate(pairings: int, confidence: float) -> float:
     """One measurement's gate, ``χ²₂(p)``, for the whole set."""
     return gate_threshold(2, confidence)
+
+
+# --- the domains the prompts state (``valid:`` of the code exercises) -------------------------
+
+
+def gate_clear(d2: float, dof: int, confidence: float) -> bool:
+    """``in_gate``'s domain: ``d² ≥ 0`` and at least 5 % away from the threshold (the prompt
+    promises that a quantile correct to about three digits is enough)."""
+    if dof not in (1, 2) or not 0.5 <= confidence <= 0.9999 or d2 < 0:
+        return False
+    threshold = chi2_threshold(int(dof), confidence)
+    return abs(d2 - threshold) >= 0.049 * threshold
+
+
+def nearest_neighbour_valid(
+    z: Vector, landmarks: Sequence[Vector], s00: float, s11: float, gate: float
+) -> bool:
+    """``nearest_neighbour``'s domain: ranges in [0.5, 50] m and bearings within ±1.5 rad (no
+    innovation needs wrapping), positive variances and gate, no ``d²`` within 5 % of the gate,
+    and no *near* tie between the two best candidates inside the gate. An exact tie (the same
+    landmark entered twice) is allowed: the prompt says which index wins."""
+    pairs = [z, *landmarks]
+    if any(len(p) != 2 for p in pairs):
+        return False
+    if any(not (0.5 <= p[0] <= 50 and abs(p[1]) <= 1.5) for p in pairs):
+        return False
+    if not (s00 > 0 and s11 > 0 and gate > 0):
+        return False
+    d2s = [_d2(z, h, s00, s11) for h in landmarks]
+    if any(abs(d - gate) < 0.05 * gate for d in d2s):
+        return False
+    inside = sorted(set(d for d in d2s if d < gate))
+    return len(inside) < 2 or inside[1] - inside[0] > 0.05 * gate

@@ -132,3 +132,26 @@ def mistake_nees_code_diagonal(x_true: ArrayLike, x_hat: ArrayLike, P: ArrayLike
 def mistake_nees_per_dof(x_true: ArrayLike, x_hat: ArrayLike, P: ArrayLike) -> float:
     """NEES divided by ``n``: the normalised value whose mean is 1, not ``n``."""
     return nees(x_true, x_hat, P) / len(np.asarray(x_true))
+
+
+def _positive_definite(m: ArrayLike, n: int) -> bool:
+    """A symmetric positive-definite ``n × n`` matrix of finite numbers."""
+    a = np.asarray(m, dtype=float)
+    if a.shape != (n, n) or not np.all(np.isfinite(a)) or not np.allclose(a, a.T, atol=1e-12):
+        return False
+    try:
+        np.linalg.cholesky(a)
+    except np.linalg.LinAlgError:
+        return False
+    return bool(np.linalg.cond(a) < 1e10)
+
+
+def nees_valid(x_true: ArrayLike, x_hat: ArrayLike, P: ArrayLike) -> bool:
+    """``nees``'s domain: two states of the same length ``3 + 2N`` (0 ≤ N ≤ 2) whose headings
+    (entry 2) lie in (−π, π], and a symmetric positive-definite ``P`` of that size."""
+    xt, xh = np.asarray(x_true, dtype=float), np.asarray(x_hat, dtype=float)
+    if xt.ndim != 1 or xt.shape != xh.shape or xt.size not in (3, 5, 7):
+        return False
+    if not all(-math.pi < float(x[2]) <= math.pi for x in (xt, xh)):
+        return False
+    return _positive_definite(P, xt.size)

@@ -348,3 +348,45 @@ def mistake_heading_gain_swapped(theta: float, var_t: float, compass: float, var
     from slamcourse.slam.se2 import wrap_angle
 
     return theta + var_c / (var_t + var_c) * wrap_angle(compass - theta)
+
+
+# --- the domains the prompts state (``valid:`` of the code exercises) -------------------------
+
+
+def _positive_definite(m: ArrayLike, n: int) -> bool:
+    """A symmetric positive-definite ``n × n`` matrix of finite numbers."""
+    a = np.asarray(m, dtype=float)
+    if a.shape != (n, n) or not np.all(np.isfinite(a)) or not np.allclose(a, a.T, atol=1e-12):
+        return False
+    try:
+        np.linalg.cholesky(a)
+    except np.linalg.LinAlgError:
+        return False
+    return bool(np.linalg.cond(a) < 1e10)
+
+
+def augment_valid(mu: Sequence[float], P: ArrayLike, z: Sequence[float], R: ArrayLike) -> bool:
+    """``augment``'s domain: a state of ``3 + 2N`` numbers (0 ≤ N ≤ 2) with its symmetric
+    positive-definite covariance, a range in [0.5, 30] m and a bearing in [−π, π], and a
+    symmetric positive-definite 2×2 ``R``."""
+    m = np.asarray(mu, dtype=float)
+    if m.ndim != 1 or m.size not in (3, 5, 7) or len(z) != 2:
+        return False
+    if not (0.5 <= float(z[0]) <= 30 and abs(float(z[1])) <= math.pi):
+        return False
+    return _positive_definite(P, m.size) and _positive_definite(R, 2)
+
+
+def update_valid(P: ArrayLike, H: ArrayLike, R: ArrayLike) -> bool:
+    """``update_covariance``'s domain: ``P`` symmetric positive definite of size ``3 + 2N``
+    (1 ≤ N ≤ 3), ``H`` of shape 2 × n with finite entries, ``R`` symmetric positive definite."""
+    p = np.asarray(P, dtype=float)
+    h = np.asarray(H, dtype=float)
+    if p.ndim != 2 or p.shape[0] not in (5, 7, 9) or h.shape != (2, p.shape[0]):
+        return False
+    if not np.all(np.isfinite(h)) or not np.any(h):
+        return False
+    used = set(np.flatnonzero(np.any(h != 0, axis=0)).tolist()) - {0, 1, 2}
+    if used and not any(used <= {3 + 2 * j, 4 + 2 * j} for j in range((p.shape[0] - 3) // 2)):
+        return False  # the prompt: nonzero only in the pose's columns and one landmark's two
+    return _positive_definite(p, p.shape[0]) and _positive_definite(R, 2)

@@ -244,3 +244,22 @@ def mistake_surplus_factors(num_poses: int, num_landmarks: int, num_observations
                             pose_dof: int, landmark_dof: int) -> int:
     """Factors minus variables, each counted once."""
     return (num_poses + num_observations) - (num_poses + num_landmarks)
+
+
+# --- the domain the prompt states (``valid:`` of fill_in) -------------------------------------
+
+
+def fill_in_valid(n: int, edges: Sequence[Pair], order: Sequence[int]) -> bool:
+    """``fill_in``'s domain: 1–20 nodes, pairs of two different nodes (repeats allowed, in
+    either order) with at most 40 different edges, and ``order`` a permutation of the nodes."""
+    if not 1 <= n <= 20:
+        return False
+    distinct = set()
+    for e in edges:
+        if len(e) != 2:
+            return False
+        a, b = e
+        if a == b or not (0 <= a < n and 0 <= b < n):
+            return False
+        distinct.add((min(a, b), max(a, b)))
+    return len(distinct) <= 40 and sorted(order) == list(range(n))

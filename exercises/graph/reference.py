@@ -356,3 +356,38 @@ def mistake_ring_chain_only(num_poses: int) -> int:
 def mistake_ring_dense(num_poses: int) -> int:
     """A full lower triangle, ``N(N + 1)/2``."""
     return num_poses * (num_poses + 1) // 2
+
+
+# --- the domains the prompts state (``valid:`` of the code exercises) -------------------------
+
+
+def omega_valid(n: int, edges: Sequence[Edge]) -> bool:
+    """``build_omega``'s domain: 1–30 poses, at most 40 edges ``(i, j, ω)`` between two
+    different poses with ``ω`` in [0.01, 10⁴] 1/m²."""
+    if not 1 <= n <= 30 or len(edges) > 40 or isinstance(edges, np.ndarray):
+        return False  # the prompt: a list or a tuple of edges
+    for e in edges:
+        if len(e) != 3:
+            return False
+        i, j, w = e
+        if isinstance(i, float) or isinstance(j, float):
+            return False
+        if i == j or not (0 <= i < n and 0 <= j < n) or not 0.01 <= w <= 1e4:
+            return False
+    return True
+
+
+def information_system_valid(omega: Sequence[Sequence[float]], xi: Sequence[float]) -> bool:
+    """``solve_information``'s domain: ``Ω`` symmetric positive definite, 1–15 poses, condition
+    number below 10⁷ (a chain with a prior stays below about 10⁶), ``ξ`` of the same length."""
+    a = np.asarray(omega, dtype=float)
+    b = np.asarray(xi, dtype=float)
+    if a.ndim != 2 or a.shape[0] != a.shape[1] or not 1 <= a.shape[0] <= 15:
+        return False
+    if b.shape != (a.shape[0],) or not np.allclose(a, a.T, rtol=0, atol=1e-12):
+        return False
+    try:
+        np.linalg.cholesky(a)
+    except np.linalg.LinAlgError:
+        return False
+    return bool(np.linalg.cond(a) < 1e7 and np.all(np.isfinite(b)))

@@ -339,3 +339,42 @@ def mistake_chi2_half(text: str, iterations: int) -> float:
 def mistake_chi2_not_optimised(text: str, iterations: int) -> float:
     """The χ² of the initial guess: the steps never reached the poses."""
     return _chi2_after(text, 0)
+
+
+# --- the domains the prompts state (``valid:`` of the code exercises) -------------------------
+
+
+def _parses(text: str) -> pg.PoseGraph | None:
+    """The graph of a g2o text whose vertex ids run from 0 to n − 1, or None."""
+    try:
+        graph = pg.parse_g2o(text)
+    except Exception:  # not a g2o text the prompts describe
+        return None
+    n = len(graph.poses)
+    if n < 2 or any(not (0 <= e.i < n and 0 <= e.j < n) for e in graph.edges):
+        return None
+    return graph
+
+
+def optimise_valid(text: str, iterations: int) -> bool:
+    """``optimise_g2o``'s domain: a g2o text of a graph the prompt describes, and an iteration
+    count within which it converges (or 0: the initial guess). Where Gauss-Newton has not
+    converged, the iterate depends on the gauge a correct method chooses (pose 0 fixed, or a
+    strong prior on it), which the prompt does not fix."""
+    graph = _parses(text)
+    if graph is None or not 0 <= iterations <= 30:
+        return False
+    if iterations == 0:
+        return True
+    x, _ = pg.gauss_newton(graph.poses, graph.edges, int(iterations))
+    y, _ = pg.gauss_newton(x, graph.edges, 3)
+    return bool(np.max(np.abs(pg.relative_to_first(x) - pg.relative_to_first(y))) < 1e-8)
+
+
+def whole_valid(text: str, iterations: int) -> bool:
+    """``intel_chi2``'s domain: a g2o text and 0–30 iterations; a graph as large as INTEL (more
+    than 200 poses) is run for the 10 iterations the prompt states."""
+    graph = _parses(text)
+    if graph is None or not 0 <= iterations <= 30:
+        return False
+    return len(graph.poses) <= 200 or iterations == ITERATIONS

@@ -233,3 +233,44 @@ def mistake_compatible_sum_of_gates(
     """The joint ``d²`` against ``k`` individual gates added up, ``k·χ²₂(p)``."""
     nu_v = np.asarray(nu, dtype=float)
     return jcbb.joint_d2(H, P, R, nu_v) < nu_v.size // 2 * chi2_quantile(confidence, 2)
+
+
+# --- the domains the prompts state (``valid:`` of the code exercises) -------------------------
+
+
+def _positive_definite(m: ArrayLike, n: int) -> bool:
+    """A symmetric positive-definite ``n × n`` matrix of finite numbers."""
+    a = np.asarray(m, dtype=float)
+    if a.shape != (n, n) or not np.all(np.isfinite(a)) or not np.allclose(a, a.T, atol=1e-12):
+        return False
+    try:
+        np.linalg.cholesky(a)
+    except np.linalg.LinAlgError:
+        return False
+    return bool(np.linalg.cond(a) < 1e10)
+
+
+def joint_valid(H: ArrayLike, P: ArrayLike, R: ArrayLike, nu: ArrayLike) -> bool:
+    """``joint_d2``'s domain: ``k`` = 1–3 pairings (``H`` of shape 2k × n, ``n = 3 + 2N``),
+    ``P`` and ``R`` symmetric positive definite, ``nu`` of length 2k with entries within ±10."""
+    h = np.asarray(H, dtype=float)
+    v = np.asarray(nu, dtype=float)
+    if h.ndim != 2 or h.shape[0] not in (2, 4, 6) or h.shape[1] not in (5, 7, 9):
+        return False
+    if v.shape != (h.shape[0],) or not np.all(np.abs(v) <= 10):
+        return False
+    if not np.all(np.isfinite(h)) or not np.any(h):
+        return False
+    return _positive_definite(P, h.shape[1]) and _positive_definite(R, 2)
+
+
+def compatible_valid(
+    H: ArrayLike, P: ArrayLike, R: ArrayLike, nu: ArrayLike, confidence: float
+) -> bool:
+    """``joint_compatible``'s domain: as ``joint_d2``'s, a confidence of 0.9, 0.95 or 0.99, and
+    ``d²`` never within 5 % of the gate."""
+    if confidence not in (0.9, 0.95, 0.99) or not joint_valid(H, P, R, nu):
+        return False
+    v = np.asarray(nu, dtype=float)
+    gate = chi2_quantile(confidence, v.size)
+    return abs(jcbb.joint_d2(H, P, R, v) - gate) >= 0.049 * gate

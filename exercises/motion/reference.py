@@ -213,3 +213,41 @@ def mistake_cov_transposed(
     """``Gᵀ Σ G + Vᵀ M V``."""
     g, v = _g_v(pose, u)
     return g.T @ np.asarray(sigma) @ g + v.T @ np.asarray(motion_cov) @ v
+
+
+# --- the domains the prompts state (``valid:`` of the code exercises) -------------------------
+
+
+def step_valid(pose: Sequence[float], u: Sequence[float]) -> bool:
+    """``odometry_step``'s domain: positions in [−20, 20] m, a heading in [−π, π], turns in
+    [−π, π] and a translation in [0, 5] m."""
+    if len(pose) != 3 or len(u) != 3:
+        return False
+    x, y, t = (float(v) for v in pose)
+    rot1, trans, rot2 = (float(v) for v in u)
+    return (
+        abs(x) <= 20 and abs(y) <= 20 and abs(t) <= math.pi
+        and abs(rot1) <= math.pi and abs(rot2) <= math.pi and 0 <= trans <= 5
+    )
+
+
+def _positive_definite(m: ArrayLike, n: int) -> bool:
+    """A symmetric positive-definite ``n × n`` matrix of finite numbers."""
+    a = np.asarray(m, dtype=float)
+    if a.shape != (n, n) or not np.all(np.isfinite(a)) or not np.allclose(a, a.T, atol=1e-12):
+        return False
+    try:
+        np.linalg.cholesky(a)
+    except np.linalg.LinAlgError:
+        return False
+    return True
+
+
+def covariance_valid(
+    pose: Sequence[float], u: Sequence[float], sigma: ArrayLike, motion_cov: ArrayLike
+) -> bool:
+    """``predict_covariance``'s domain: a pose and odometry as for ``odometry_step`` (any
+    position), and two symmetric positive-definite 3×3 covariances."""
+    if len(pose) != 3 or len(u) != 3 or float(u[1]) < 0:
+        return False
+    return _positive_definite(sigma, 3) and _positive_definite(motion_cov, 3)

@@ -315,3 +315,21 @@ def jacobian_range_without_sqrt(
 ) -> list[list[float]]:
     """Wrong: the range row divided by ``q`` instead of ``√q`` (e.g. ``−Δx/q``)."""
     return mistake_jacobian_range_over_q(xr, yr, thr, xj, yj)
+
+
+# --- the domains the prompts state (``valid:`` of the code exercises) -------------------------
+
+
+def _in_map(xr: float, yr: float, thr: float, xj: float, yj: float) -> bool:
+    return all(abs(v) <= 200 for v in (xr, yr, xj, yj)) and abs(thr) <= 10
+
+
+def landmark_clear_of_robot(xr: float, yr: float, thr: float, xj: float, yj: float) -> bool:
+    """``observation_model``'s domain: the map and headings of the prompt, and the landmark at
+    least 0.1 m from the robot."""
+    return _in_map(xr, yr, thr, xj, yj) and math.hypot(xj - xr, yj - yr) >= 0.1
+
+
+def landmark_half_metre_away(xr: float, yr: float, thr: float, xj: float, yj: float) -> bool:
+    """``range_bearing_jacobian``'s domain: as the model's, the landmark at least 0.5 m away."""
+    return _in_map(xr, yr, thr, xj, yj) and math.hypot(xj - xr, yj - yr) >= 0.5

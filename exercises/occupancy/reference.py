@@ -283,3 +283,14 @@ def mistake_grid_3d_squared(side: float, resolution: float, bytes_per_cell: floa
 def mistake_grid_3d_gigabytes(side: float, resolution: float, bytes_per_cell: float) -> float:
     """The size in gigabytes reported as terabytes."""
     return grid_3d_terabytes(side, resolution, bytes_per_cell) * 1000
+
+
+# --- the domain the prompt states (``valid:`` of update_ray) ----------------------------------
+
+
+def ray_valid(log_odds: Sequence[float], hit_index: int, l_occ: float, l_free: float) -> bool:
+    """``update_ray``'s domain: a row of 1–60 cells with log-odds in [−10, 10], a hit cell in
+    the row, ``l_occ`` in [0.2, 6.9] and ``l_free`` in [−6.9, −0.2]."""
+    if not 1 <= len(log_odds) <= 60 or not 0 <= hit_index < len(log_odds):
+        return False
+    return all(-10 <= v <= 10 for v in log_odds) and 0.2 <= l_occ <= 6.9 and -6.9 <= l_free <= -0.2

@@ -252,3 +252,25 @@ def mistake_md_no_fill(n: int, edges: Sequence[Sequence[int]]) -> list[int]:
         remaining.discard(v)
         order.append(v)
     return order
+
+
+# --- the domains the prompts state (``valid:`` of the code exercises) -------------------------
+
+
+def graph_valid(n: int, edges: Sequence[Sequence[int]]) -> bool:
+    """The graphs of ``min_degree_order`` and ``symbolic_fill``: 1–11 variables and pairs of two
+    different variables (repeated or reversed pairs allowed)."""
+    if not 1 <= n <= 11:
+        return False
+    for e in edges:
+        if len(e) != 2:
+            return False
+        a, b = e
+        if a == b or not (0 <= a < n and 0 <= b < n):
+            return False
+    return True
+
+
+def fill_valid(n: int, edges: Sequence[Sequence[int]], order: Sequence[int]) -> bool:
+    """``symbolic_fill``'s domain: a graph as above and ``order`` listing every variable once."""
+    return graph_valid(n, edges) and sorted(order) == list(range(n))

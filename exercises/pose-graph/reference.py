@@ -259,3 +259,52 @@ def mistake_gn_jacobian_sign(
 ) -> Matrix:
     """``∂e_xy/∂θ_i`` with the wrong sign."""
     return _gn_variant(poses, edges, iterations, heading_sign=-1.0)
+
+
+# --- the domains the prompts state (``valid:`` of the code exercises) -------------------------
+
+
+def edge_valid(xi: Pose, xj: Pose, z: Pose) -> bool:
+    """``edge_error``'s (and ``edge_jacobians``') domain: poses with positions in [−20, 20] m
+    and headings in [−π, π], a measurement with positions in [−5, 5] m and an angle in
+    [−π, π]."""
+    if len(xi) != 3 or len(xj) != 3 or len(z) != 3:
+        return False
+    poses_ok = all(abs(p[0]) <= 20 and abs(p[1]) <= 20 and abs(p[2]) <= math.pi for p in (xi, xj))
+    return poses_ok and abs(z[0]) <= 5 and abs(z[1]) <= 5 and abs(z[2]) <= math.pi
+
+
+def graph_valid(poses: Sequence[Pose], edges: Sequence[Sequence[Any]], iterations: int) -> bool:
+    """``gauss_newton``'s domain: 2–12 poses, edges between two of them with a symmetric
+    positive-definite information matrix, every pose connected to pose 0, and a graph that
+    converges within ``iterations`` steps (or ``iterations`` = 0: the initial guess). Before
+    convergence the iterate depends on the gauge a correct method chooses (pose 0 removed, a
+    strong prior on it, another pose fixed), which the prompt does not fix."""
+    n = len(poses)
+    if not 2 <= n <= 12 or not 0 <= iterations <= 20 or any(len(p) != 3 for p in poses):
+        return False
+    reached = {0}
+    for e in edges:
+        if len(e) != 4:
+            return False
+        i, j, z, om = e
+        if not (0 <= i < n and 0 <= j < n) or i == j or len(z) != 3:
+            return False
+        a = np.asarray(om, dtype=float)
+        if a.shape != (3, 3) or not np.allclose(a, a.T, atol=1e-12):
+            return False
+        try:
+            np.linalg.cholesky(a)
+        except np.linalg.LinAlgError:
+            return False
+    for _ in range(n):  # connectivity: every pose reachable from pose 0
+        for e in edges:
+            if e[0] in reached or e[1] in reached:
+                reached |= {int(e[0]), int(e[1])}
+    if len(reached) != n:
+        return False
+    if iterations == 0:
+        return True
+    x, _ = pg.gauss_newton(np.array(poses, dtype=float), _edges(edges), int(iterations))
+    y, _ = pg.gauss_newton(x, _edges(edges), 3)
+    return bool(np.max(np.abs(pg.relative_to_first(x) - pg.relative_to_first(y))) < 1e-8)

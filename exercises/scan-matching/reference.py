@@ -310,3 +310,55 @@ def mistake_beam_hit_also_free(grid: Sequence[Sequence[float]], x0: int, y0: int
     out = update_beam(grid, x0, y0, x1, y1, l_occ, l_free)
     out[y1][x1] += l_free
     return out
+
+
+# --- the domains the prompts state (``valid:`` of the code exercises) -------------------------
+
+
+def _well_posed(p: np.ndarray, q: np.ndarray, spread: float) -> bool:
+    """The best angle of the pairs ``p[i] ↔ q[i]`` is well defined."""
+    _, _, h = scanmatch.cross_covariance(p, q)
+    size = float(np.sum((p - p.mean(axis=0)) ** 2))
+    return size > spread and math.hypot(h[0, 1] - h[1, 0], h[0, 0] + h[1, 1]) > 1e-3 * size
+
+
+def align_valid(P: Points, Q: Points) -> bool:
+    """``align_2d``'s domain: two lists of the same number N ≥ 2 of 2-D points, those of ``P``
+    not all in one place (spread over more than 0.5 m around their centroid), and a best
+    angle that is well defined."""
+    p, q = np.asarray(P, dtype=float), np.asarray(Q, dtype=float)
+    if p.ndim != 2 or p.shape[1:] != (2,) or p.shape != q.shape or len(p) < 2:
+        return False
+    return _well_posed(p, q, 0.25 * len(p))
+
+
+def icp_valid(P: Points, Q: Points) -> bool:
+    """``icp_step``'s domain: N ≥ 2 points in ``P``, M ≥ 2 in ``Q``, no point of ``P`` almost
+    (but not exactly) as near to two different points of ``Q`` (an exact tie follows the
+    prompt's rule; a near one would hinge on rounding), and a well-defined best angle."""
+    p, q = np.asarray(P, dtype=float), np.asarray(Q, dtype=float)
+    if p.ndim != 2 or q.ndim != 2 or p.shape[1:] != (2,) or q.shape[1:] != (2,):
+        return False
+    if len(p) < 2 or len(q) < 2:
+        return False
+    d = np.sqrt(np.sum((p[:, None, :] - q[None, :, :]) ** 2, axis=2))
+    for row in d:
+        ranked = np.sort(np.unique(row))
+        if len(ranked) > 1 and ranked[1] - ranked[0] < 1e-6:
+            return False
+    pairs = scanmatch.nearest_neighbours(p, q)
+    return _well_posed(p, q[pairs], 0.5)
+
+
+def beam_valid(grid: Sequence[Sequence[float]], x0: int, y0: int, x1: int, y1: int,
+               l_occ: float, l_free: float) -> bool:
+    """``update_beam``'s domain: a rectangular grid of 1–12 rows and columns, both cells inside
+    it, ``l_occ`` > 0 and ``l_free`` < 0."""
+    rows = len(grid)
+    if not 1 <= rows <= 12:
+        return False
+    cols = len(grid[0])
+    if not 1 <= cols <= 12 or any(len(row) != cols for row in grid):
+        return False
+    inside = all(0 <= x < cols for x in (x0, x1)) and all(0 <= y < rows for y in (y0, y1))
+    return inside and l_occ > 0 and l_free < 0

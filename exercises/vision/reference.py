@@ -467,3 +467,63 @@ def mistake_threshold_sigma_not_squared(sigma: float, confidence: float) -> floa
 def mistake_threshold_two_dof(sigma: float, confidence: float) -> float:
     """``σ² χ²₂(p)``: two degrees of freedom, as for a 2D point error."""
     return sigma**2 * _vision.chi2_quantile(confidence, 2)
+
+
+# --- the domains the prompts state (``valid:`` of the code exercises) -------------------------
+
+
+def epipolar_valid(E: Matrix, x: Vector, x2: Vector) -> bool:
+    """``epipolar_residual``'s domain: a 3×3 ``E`` with entries within ±(3√2) (an essential
+    matrix of a translation up to 3 m per axis, or any matrix with entries in [−2, 2]), and two
+    normalised points ``[u, v, 1]`` with ``u, v`` in [−1.5, 1.5]."""
+    e = np.asarray(E, dtype=float)
+    if e.shape != (3, 3) or not np.all(np.abs(e) <= 3 * math.sqrt(2) + 1e-9):
+        return False
+    for p in (x, x2):
+        if len(p) != 3 or p[2] != 1 or abs(p[0]) > 1.5 or abs(p[1]) > 1.5:
+            return False
+    return True
+
+
+def essential_valid(t: Vector, R: Matrix) -> bool:
+    """``essential_matrix``'s domain: ``t`` within [−3, 3] per axis and a proper rotation
+    (``R Rᵀ = I``, ``det R = +1``)."""
+    r = np.asarray(R, dtype=float)
+    if len(t) != 3 or any(abs(c) > 3 for c in t) or r.shape != (3, 3):
+        return False
+    return bool(np.allclose(r @ r.T, np.eye(3), atol=1e-9) and np.linalg.det(r) > 0)
+
+
+def ransac_line_valid(points: Sequence[Vector], samples: Sequence[Sequence[int]],
+                      threshold: float) -> bool:
+    """``best_line``'s domain: up to 22 points within ±30 m, a threshold in [0.05, 1] m, 1–9
+    candidate pairs of point indices whose points are at least 0.5 m apart, and no point within
+    1e-6 m of the threshold of a candidate's line (where rounding would decide)."""
+    if not 1 <= len(points) <= 22 or not 1 <= len(samples) <= 9 or not 0.05 <= threshold <= 1:
+        return False
+    if any(len(p) != 2 or abs(p[0]) > 30 or abs(p[1]) > 30 for p in points):
+        return False
+    for s in samples:
+        if len(s) != 2 or isinstance(s[0], float) or isinstance(s[1], float):
+            return False
+        a, b = s
+        if not (0 <= a < len(points) and 0 <= b < len(points)):
+            return False
+        if math.dist(points[a], points[b]) < 0.5:
+            return False
+    return all(abs(point_line_distance(points[a], points[b], q) - threshold) >= 1e-6
+               for a, b in samples for q in points)
+
+
+def ransac_iterations_valid(inlier_ratio: float, sample_size: int, confidence: float) -> bool:
+    """``ransac_iterations``'s domain: ``w`` in [0.1, 0.99], ``s`` in 1–8, ``p`` in
+    [0.5, 0.9999], a clean sample not rarer than 10⁻⁴, and an exact count not within rounding
+    noise of a whole number, where the formula chosen (log, log1p, a loop) could decide the
+    ceiling (exact whole-number ratios are the explicit examples' business)."""
+    if not (0.1 <= inlier_ratio <= 0.99 and 1 <= sample_size <= 8 and 0.5 <= confidence <= 0.9999):
+        return False
+    if inlier_ratio**sample_size < 1e-4:
+        return False
+    ratio = ransac_ratio(inlier_ratio, sample_size, confidence)
+    margin = 1e-7 + 1e-9 * ratio
+    return ratio - math.floor(ratio) > margin and math.ceil(ratio) - ratio > margin

@@ -453,10 +453,9 @@ def cmd_reset(args: argparse.Namespace, out: Out) -> int:
 
 
 def cmd_validate(args: argparse.Namespace, out: Out) -> int:
-    from slamcourse.course.locate import course_root
     from slamcourse.validate import validate_course
 
-    root = course_root(args.path or args.course)
+    root, only = _validate_targets(args.path, args.course)
     progress = None
     if sys.stderr.isatty() and not args.json:  # a live line on a terminal; nothing in logs
 
@@ -472,6 +471,7 @@ def cmd_validate(args: argparse.Namespace, out: Out) -> int:
             min_mutants=args.min_mutants,
             min_variants=args.min_variants,
             record=args.record,
+            only=only,
         )
     finally:
         if progress is not None:
@@ -495,6 +495,38 @@ def cmd_validate(args: argparse.Namespace, out: Out) -> int:
         )
         out.line(out.style(summary, "bold", "green" if report.ok else "red"))
     return 0 if report.ok else 1
+
+
+def _validate_targets(targets: list[str], course: str | None) -> tuple[Path, list[str] | None]:
+    """The course to validate and, if the targets name exercises, just those (ids of the
+    course, or paths of their YAML files: ``exercises/<chapter>/<slug>.yaml``)."""
+    from slamcourse.course.locate import course_root
+
+    folders = [t for t in targets if Path(t).is_dir()]
+    if len(folders) > 1:
+        raise UsageError("validate takes one course folder; name exercises by id or file")
+    root: Path | None = course_root(folders[0] if folders else course) if folders else None
+    only: list[str] = []
+    for target in targets:
+        path = Path(target)
+        if path.is_dir():
+            continue
+        if path.suffix in (".yaml", ".yml") and path.is_file():
+            found = path.resolve().parent.parent.parent
+            if root is not None and found != root.resolve():
+                raise UsageError(f"{target} is not an exercise of the course at {root}")
+            root = found
+            only.append(f"{path.parent.name}/{path.stem}")
+        elif "/" in target and not path.exists():
+            only.append(target)
+        else:
+            raise UsageError(
+                f"{target}: not a course folder, an exercise file or an exercise id "
+                "(write e.g. se2/between or exercises/se2/between.yaml)"
+            )
+    if root is None:
+        root = course_root(course)
+    return root, only or None
 
 
 def cmd_doctor(args: argparse.Namespace, out: Out) -> int:
@@ -775,7 +807,13 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
     p = add("doctor", cmd_doctor, "report the sandbox isolation level and where files live")
     p.add_argument("--json", action="store_true")
     p = add("validate", cmd_validate, "prove a course sound (reference, variants, misconceptions)")
-    p.add_argument("path", metavar="COURSE", nargs="?", help="course folder (default: bundled)")
+    p.add_argument(
+        "path",
+        metavar="TARGET",
+        nargs="*",
+        help="a course folder (default: the bundled course), or exercises of it to validate "
+        "alone: ids (se2/between) or YAML files (exercises/se2/between.yaml)",
+    )
     p.add_argument(
         "--variants",
         type=int,

@@ -214,6 +214,7 @@ class Engine:
         self.settings = settings
         self.progress = progress
         self._pool: WorkerPool | None = None
+        self._fork_workers = False
         self._pool_lock = threading.Lock()
 
     @classmethod
@@ -223,20 +224,27 @@ class Engine:
         *,
         with_progress: bool = True,
         warm_sandbox: bool = False,
+        fork_workers: bool = False,
+        course: Course | None = None,
     ) -> Engine:
         """Open the course and (``with_progress``) the learner's progress.
 
         ``warm_sandbox``: start a sandbox worker first, so its interpreter imports numpy while
-        this process loads the course (a one-shot code check).
+        this process loads the course (a one-shot code check). ``fork_workers``: every code
+        check gets a fresh worker forked from one sandboxed zygote of this engine (a batch
+        grader's engine, which serves one submission and checks many exercises). ``course``: the
+        course already loaded from ``settings.course`` (a batch loads it once per process; its
+        exercises are parsed once, not once per submission).
         """
         settings = settings or Settings.from_env()
         activate_cache(settings.cache)
         engine_pool = None
         if warm_sandbox:
-            engine_pool = cls._new_pool(settings, keep_spare=False)
+            engine_pool = cls._new_pool(settings, keep_spare=False, fork=fork_workers)
             engine_pool.warm()
         try:
-            course = load_course(course_root(settings.course))
+            if course is None:
+                course = load_course(course_root(settings.course))
             progress = Progress.open(settings.home / "progress.sqlite3") if with_progress else None
         except BaseException:
             if engine_pool is not None:
@@ -244,13 +252,16 @@ class Engine:
             raise
         engine = cls(course, settings, progress)
         engine._pool = engine_pool
+        engine._fork_workers = fork_workers
         return engine
 
     @staticmethod
-    def _new_pool(settings: Settings, *, keep_spare: bool) -> WorkerPool:
+    def _new_pool(settings: Settings, *, keep_spare: bool, fork: bool = False) -> WorkerPool:
         from slamcourse.grading.pool import WorkerPool
 
-        return WorkerPool(require_isolation=settings.require_isolation, keep_spare=keep_spare)
+        return WorkerPool(
+            require_isolation=settings.require_isolation, keep_spare=keep_spare, fork=fork
+        )
 
     def start_workers(self) -> None:
         """For long-running faces: keep a sandbox worker ready for the next code check."""
@@ -388,10 +399,13 @@ class Engine:
         source: str | None = None,
         path: Path | None = None,
         hidden_seed: int | None = None,
+        tests: Any = None,
     ) -> Result:
         """Grade learner code in the sandbox: ``source``, or the file ``path``, or (neither)
         the learner's workspace file. ``hidden_seed`` (grading mode; default: the settings')
-        also runs inputs drawn with that secret seed once the visible ones pass."""
+        also runs inputs drawn with that secret seed. ``tests``: the exercise's test set built
+        once for a whole batch (:class:`~slamcourse.grading.testset.SharedTests`); a batch
+        grades without shrinking a failure (it reports the first failing input)."""
         import hashlib
 
         from slamcourse.kinds.code import read_source
@@ -412,17 +426,23 @@ class Engine:
             require_isolation=self.settings.require_isolation,
             spawn=self._take_worker,
             hidden_seed=hidden_seed if hidden_seed is not None else self.settings.hidden_seed,
+            tests=tests,
+            shrink=tests is None,
         )
         digest = hashlib.sha256(source.encode("utf-8", "replace")).hexdigest()[:16]
         where = str(path) if path is not None else filename
         return self._conclude(spec, variants.variant(spec, 0), f"{where} sha256:{digest}", verdict)
 
-    def _take_worker(self) -> Any:
+    def _take_worker(self, limits: Any = None) -> Any:
+        """A fresh sandbox worker with ``limits`` (None: the defaults, which the pool's
+        pre-started workers have)."""
         with self._pool_lock:
             if self._pool is None:
-                self._pool = self._new_pool(self.settings, keep_spare=False)
+                self._pool = self._new_pool(
+                    self.settings, keep_spare=False, fork=self._fork_workers
+                )
             pool = self._pool
-        return pool.take()
+        return pool.take(limits)
 
     def _conclude(
         self, spec: ExerciseSpec, variant: Variant, answer: str, verdict: Verdict

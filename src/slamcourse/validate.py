@@ -15,7 +15,7 @@ from pathlib import Path
 from slamcourse.course import templates, variants
 from slamcourse.course.loader import Course, load_course
 from slamcourse.course.model import ExerciseSpec
-from slamcourse.errors import CourseError, GraderError, Problem, relpath
+from slamcourse.errors import CourseError, GraderError, Problem, UsageError, relpath
 from slamcourse.kinds import get_kind
 
 MIN_MUTANTS = 8
@@ -43,15 +43,27 @@ def validate_course(
     min_mutants: int | None = None,
     min_variants: int | None = None,
     record: bool = False,
+    only: list[str] | None = None,
 ) -> Report:
-    """Load every chapter and exercise of the course at ``root`` and check each one.
+    """Load every chapter and exercise of the course at ``root`` and check each one (``only``:
+    just these exercise ids, which must exist).
 
     ``min_mutants``/``min_variants`` default to :data:`MIN_MUTANTS`/:data:`MIN_VARIANTS`;
     ``record`` (re)writes each code exercise's shipped recording before checking it."""
     course = load_course(root)
     report = Report(list(course.problems))
     placed = set(course.exercise_ids)
-    for path in sorted((root / "exercises").glob("*/*.yaml")):
+    paths = sorted((root / "exercises").glob("*/*.yaml"))
+    if only is not None:
+        known = {f"{p.parent.name}/{p.stem}" for p in paths}
+        unknown = [ex for ex in only if ex not in known]
+        if unknown:
+            raise UsageError(
+                f"no exercise {', '.join(unknown)} in the course at {root} "
+                "(ids look like se2/between; `slamcourse list` shows them)"
+            )
+        paths = [p for p in paths if f"{p.parent.name}/{p.stem}" in only]
+    for path in paths:
         ex_id = f"{path.parent.name}/{path.stem}"
         if ex_id not in placed:
             report.problems.append(
@@ -199,30 +211,23 @@ def _code_files(
 
 
 def record_inputs(spec: ExerciseSpec) -> list[dict[str, object]]:
-    """The inputs a passing run of this exercise draws: the reference run against itself."""
+    """The inputs a learner's passing check draws (explicit examples first), without calling
+    anything; the reference must be defined on every one of them."""
     from slamcourse.course import reference
-    from slamcourse.grading.properties import TrustedCallee, exercise_seed, run
+    from slamcourse.grading.properties import exercise_seed
+    from slamcourse.grading.testset import draw
 
-    kind = get_kind("code")
-    opts = spec.options
+    inputs = draw(spec, exercise_seed(spec.id), examples=spec.options.examples)
     ref = reference.function(spec, spec.reference or "", spec.reference_line)
-    outcome = run(
-        strategy=kind.strategy(spec),  # type: ignore[attr-defined]
-        examples=opts.examples,
-        signature=opts.signature,
-        returns=opts.returns,
-        tolerance=opts.tolerance,
-        reference=ref,
-        call=TrustedCallee(ref).call,
-        max_examples=opts.max_examples,
-        seed=exercise_seed(spec.id),
-    )
-    if outcome.failure is not None:
-        raise GraderError(
-            f"cannot record test inputs: the reference does not pass against itself on "
-            f"{outcome.failure.kwargs} ({outcome.failure.message})"
-        )
-    return outcome.drawn
+    for kwargs in inputs:
+        try:
+            ref(**kwargs)
+        except Exception as exc:
+            raise GraderError(
+                f"cannot record test inputs: the reference fails on {kwargs} "
+                f"({type(exc).__name__}: {exc})"
+            ) from exc
+    return inputs
 
 
 def _render_all(spec: ExerciseSpec, params: dict[str, object], answer: object) -> None:

@@ -29,6 +29,9 @@ class Verdict:
     feedback: str
     misconception: str | None = None
     details: dict[str, Any] = field(default_factory=dict)
+    learner_seconds: float = field(default=0.0, compare=False)
+    """Wall time spent inside the learner's code (code exercises; a timing, so it is kept out
+    of :meth:`to_dict`, which must be the same for the same answer)."""
 
     def __post_init__(self) -> None:
         if self.status not in STATUSES:
@@ -54,7 +57,9 @@ class Verdict:
         return EXIT_NOT_PASSED
 
     def to_dict(self) -> dict[str, Any]:
-        return asdict(self)
+        data = asdict(self)
+        del data["learner_seconds"]
+        return data
 
     # Convenience constructors keep call sites short and uniform.
     @classmethod

@@ -26,9 +26,10 @@ WRONG_CODE = (
     "    return dx*dx + dy*dy, math.atan2(dy, dx) - theta\n"
 )
 CRASH_CODE = "import os\ndef range_bearing(dx, dy, theta):\n    os._exit(3)\n"
+# more than the 1 MiB one call may print (Limits.muted_after): a flood, on the first call
 FLOOD_CODE = (
     "import math\ndef range_bearing(dx, dy, theta):\n"
-    "    print('x' * 200_000)\n    return math.hypot(dx, dy), math.atan2(dy, dx) - theta\n"
+    "    print('x' * 2_000_000)\n    return math.hypot(dx, dy), math.atan2(dy, dx) - theta\n"
 )
 
 
@@ -99,9 +100,13 @@ def test_unreadable_answers_and_crashing_code_are_verdicts(graded: Any) -> None:
     assert "stopped the grader's worker" in crash[CODE_ID].feedback
 
 
-def test_flooding_output_is_cut_and_graded(graded: Any) -> None:
+def test_flooding_output_stops_grading_at_once(graded: Any) -> None:
     flood = by_id(graded[1][3])
-    assert flood[CODE_ID].status == "passed"
+    assert flood[CODE_ID].status == "failed"
+    assert (
+        "printed more than 1 MiB of output in one call (test input 1 of" in flood[CODE_ID].feedback
+    )
+    assert flood[CODE_ID].seconds < 5  # not every call made: grading stops at the flood
     assert len(json.dumps(graded[1][3].to_dict())) < 50_000
 
 
@@ -119,33 +124,18 @@ def test_grading_is_deterministic(graded: Any) -> None:
 
 
 def memorised_source() -> str:
-    """A 'solution' that knows the answers of exactly the inputs the local check draws."""
-    from slamcourse.course import reference
-    from slamcourse.grading.properties import TrustedCallee, exercise_seed, run
-    from slamcourse.kinds import get_kind
+    """A 'solution' that knows the answers of exactly the inputs the local check uses."""
+    from slamcourse.grading import testset
 
-    spec = COURSE.exercise(CODE_ID)
-    opts = spec.options
-    ref = reference.function(spec, spec.reference or "", spec.reference_line)
-    outcome = run(
-        strategy=get_kind("code").strategy(spec),  # type: ignore[attr-defined]
-        examples=opts.examples,
-        signature=opts.signature,
-        returns=opts.returns,
-        tolerance=opts.tolerance,
-        reference=ref,
-        call=TrustedCallee(ref).call,
-        max_examples=opts.max_examples,
-        seed=exercise_seed(spec.id),
-    )
-    from slamcourse.grading import replay
-
-    # the inputs a local check uses: the course's shipped recording when it has one (a check
-    # replays it), else what Hypothesis draws with the exercise's seed
-    local = replay.load_shipped(spec, exercise_seed(spec.id)) or outcome.drawn
+    # the inputs a local check uses: its visible test set (the examples, the boundary inputs of
+    # the declared types, the course's shipped recording), with the reference's outputs
+    local = testset.build(COURSE.exercise(CODE_ID)).visible
+    assert any(c.origin.startswith("boundary") for c in local)
     table = {
-        (float(d["dx"]), float(d["dy"]), float(d["theta"])): tuple(float(v) for v in ref(**d))
-        for d in [*local, *outcome.drawn, *opts.examples]
+        (float(c.kwargs["dx"]), float(c.kwargs["dy"]), float(c.kwargs["theta"])): tuple(
+            float(v) for v in c.expected
+        )
+        for c in local
     }
     return (
         f"TABLE = {table!r}\n"

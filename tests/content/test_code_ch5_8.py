@@ -670,7 +670,8 @@ CASES = [
     ("occupancy/log-odds-update", LOG_ODDS["unnormalised"], WRONG, "unnormalised"),
     ("occupancy/ray-update", RAY["branches"], OK, None),
     ("occupancy/ray-update", RAY["numpy"], OK, None),
-    ("occupancy/ray-update", RAY["in-place"], OK, None),
+    # the prompt says: do not change `log_odds`, return a new list or array
+    ("occupancy/ray-update", RAY["in-place"], WRONG, None),
     ("occupancy/ray-update", RAY["slices-tuple"], OK, None),
     ("occupancy/ray-update", RAY["beyond-free"], WRONG, "beyond-free"),
     ("occupancy/ray-update", RAY["hit-not-updated"], WRONG, "hit-not-updated"),

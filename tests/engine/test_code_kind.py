@@ -229,7 +229,7 @@ def test_doctor_reports_isolation(capsys: pytest.CaptureFixture[str]) -> None:
 
 def test_replayed_recording_gives_the_same_verdicts(private_home: Path, course_copy: Path) -> None:
     """After a passing run, checks replay the recorded inputs; verdicts do not change."""
-    from slamcourse.grading import replay
+    from slamcourse.grading import replay, testset
     from slamcourse.grading.properties import exercise_seed
 
     (course_copy / "exercises/basics/recordings/range-bearing.json").unlink()  # none shipped
@@ -242,7 +242,14 @@ def test_replayed_recording_gives_the_same_verdicts(private_home: Path, course_c
     assert replay.load(key) is None
     first = grade(CORRECT["math.hypot, unwrapped"])  # full Hypothesis run, then recorded
     inputs = replay.load(key)
-    assert inputs is not None and len(inputs) == first.details["examples"]
+    # the cache holds the drawn inputs (the examples first); the check also ran the boundary
+    # inputs derived from them, each distinct input once: the test set now built from the cache
+    tests = testset.build(spec)
+    assert inputs is not None and tests.recorded
+    keys = [testset.input_key(c.kwargs) for c in tests.cases]
+    assert {testset.input_key(i) for i in inputs} <= set(keys)
+    assert any(c.origin.startswith("boundary") for c in tests.cases)
+    assert len(keys) == first.details["examples"]
     second = grade(CORRECT["numpy array, wrapped"])  # replayed
     assert second.to_dict() == {**first.to_dict(), "feedback": second.feedback}
     assert second.details["examples"] == first.details["examples"]

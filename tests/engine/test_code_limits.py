@@ -9,6 +9,7 @@ from typing import Any
 import pytest
 
 from slamcourse.course.loader import load_course
+from slamcourse.grading.pool import WorkerPool
 from slamcourse.kinds import get_kind
 from slamcourse.sandbox import Limits
 from slamcourse.validate import validate_course
@@ -78,16 +79,25 @@ def test_bad_limits_are_reported_at_their_line(course_copy: Path, text: str, wor
 
 
 def test_the_exercise_limits_replace_the_engine_worker(course_copy: Path) -> None:
-    """A lower call limit times out a 1.5 s call that the defaults allow; the engine's worker
-    (default limits) is not used."""
+    """A lower call limit times out a 1.5 s call that the defaults allow: the engine's worker
+    factory is asked for the exercise's limits, and its pool (whose ready worker has the
+    default limits) starts a worker with them instead."""
+    asked: list[Any] = []
+    pool = WorkerPool()  # the engine's: default limits, one worker started early
+    pool.warm()
 
-    def engine_worker() -> Any:
-        raise AssertionError("the engine's default-limits worker was used")
+    def engine_worker(limits: Any) -> Any:
+        asked.append(limits)
+        return pool.take(limits)
 
     source = SLEEPER.format(seconds=1.5)
     with_limits(course_copy, "limits: {call_seconds: 1}\n")
-    verdict = grade(course_copy, source, spawn=engine_worker)
-    assert verdict.status == "timeout", verdict.feedback
+    try:
+        verdict = grade(course_copy, source, spawn=engine_worker)
+    finally:
+        pool.close()
+    assert asked == [Limits(call_seconds=1)]
+    assert verdict.status == "timeout", verdict.feedback  # the default 5 s would have passed
     assert "range_bearing(dx=1" in verdict.feedback
 
 

@@ -33,7 +33,7 @@ def test_fixture_course_loads_in_chapter_order() -> None:
     course = load_course(FIXTURE_COURSE)
     assert course.problems == []
     assert course.exercise_ids[:3] == ["basics/distance", "basics/heading", "basics/count"]
-    assert len(course.exercise_ids) == 11
+    assert len(course.exercise_ids) == 15
 
 
 def test_fixture_course_validates() -> None:
@@ -41,7 +41,7 @@ def test_fixture_course_validates() -> None:
         FIXTURE_COURSE, variants_per_exercise=10, min_mutants=0, min_variants=0
     )
     assert report.problems == []
-    assert report.exercises == 11
+    assert report.exercises == 15
 
 
 @pytest.mark.parametrize(
@@ -212,8 +212,9 @@ def test_prompt_and_context(engine: Engine) -> None:
 
 
 def test_chapters_and_segments(engine: Engine) -> None:
-    (chapter,) = engine.chapters()
+    chapter, boundaries = engine.chapters()
     assert chapter.id == "basics" and chapter.exercise_ids[0] == "basics/distance"
+    assert boundaries.id == "boundaries" and boundaries.exercise_ids[0] == "boundaries/wrap"
     segments = engine.chapter_segments("basics")
     assert [s.exercise_id for s in segments][:2] == ["basics/distance", "basics/heading"]
     assert segments[-1].exercise_id is None

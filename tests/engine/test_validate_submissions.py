@@ -11,7 +11,7 @@ import json
 from pathlib import Path
 
 from slamcourse.course.loader import load_course
-from slamcourse.grading import replay
+from slamcourse.grading import replay, testset
 from slamcourse.grading.properties import exercise_seed
 from slamcourse.kinds import get_kind
 from slamcourse.validate import validate_exercise
@@ -63,8 +63,9 @@ def test_mutants_that_pass_and_variants_that_fail_are_reported(course_copy: Path
     ) in found
     assert (
         "exercises/basics/variants/range-bearing/a_fails.py:1: this correct variant (claims to "
-        "be right) fails: Wrong result for `range_bearing(dx=-1, dy=0, theta=0)`:"
-    ) in found
+        "be right) fails: Wrong result for `range_bearing(dx=-1, dy=0, theta=0)`: expected "
+        "`[1, 3.1416]`, got `[1, 0]`. Value 2 of the tuple: expected 3.1416 (mod 2π), got 0."
+    ) in found  # the feedback's first line (the first failing input: the second example)
     # the wrong mutants fail, the complex variant passes, 2 variants are enough
     assert len(found) == 4, found
 
@@ -99,7 +100,14 @@ def test_first_check_replays_the_shipped_recording(private_home: Path) -> None:
     spec = load_course(FIXTURE_COURSE).exercise(EXERCISE)
     assert replay.shipped_state(spec, exercise_seed(spec.id)) == "ok"
     verdict = get_kind("code").check_source(spec, SOLUTION, "mine.py")  # type: ignore[attr-defined]
-    assert verdict.passed and verdict.details["examples"] == 102
+    # the test set: the examples, the boundary inputs derived from them and the first recorded
+    # inputs, and the recorded inputs (each distinct input once); all of it from the recording
+    tests = testset.build(spec)
+    recorded = replay.load_shipped(spec, exercise_seed(spec.id))
+    assert tests.recorded and recorded is not None
+    drawn = {testset.input_key(c.kwargs) for c in tests.cases if c.origin == "drawn"}
+    assert drawn and drawn <= {testset.input_key(i) for i in recorded}
+    assert verdict.passed and verdict.details["examples"] == len(tests.cases)
     assert not (private_home / "cache" / "inputs").exists()
     wrong = get_kind("code").check_source(spec, WRONG, "mine.py")  # type: ignore[attr-defined]
     assert wrong.status == "failed"
@@ -115,16 +123,26 @@ def test_a_stale_shipped_recording_is_ignored_at_check_time(course_copy: Path) -
     spec = load_course(course_copy).exercise(EXERCISE)
     assert replay.load_shipped(spec, exercise_seed(spec.id)) is None
     verdict = get_kind("code").check_source(spec, SOLUTION, "mine.py")  # type: ignore[attr-defined]
-    assert verdict.passed and verdict.details["examples"] == 102
+    assert verdict.passed
+    # the check drew its inputs afresh (and cached them for the next check): the test set
+    # built from that cache is the one it ran, without the stale recording's input
+    tests = testset.build(spec)
+    assert tests.recorded  # (from that cache)
+    assert verdict.details["examples"] == len(tests.cases)
+    stale = testset.input_key(data["inputs"][0])
+    assert all(testset.input_key(c.kwargs) != stale for c in tests.cases)
 
 
 def test_hidden_seed_runs_inputs_no_recording_holds() -> None:
-    """A function that is right on exactly the recorded inputs passes the ordinary check and
-    fails the hidden one (grading mode)."""
+    """A function that is right on exactly the inputs a learner's check uses passes the
+    ordinary check and fails the hidden one (grading mode)."""
     spec = load_course(FIXTURE_COURSE).exercise(EXERCISE)
-    recorded = replay.load_shipped(spec, exercise_seed(spec.id))
-    assert recorded is not None
-    known = sorted({(float(i["dx"]), float(i["dy"]), float(i["theta"])) for i in recorded})
+    # what a learner's check runs: the examples, the boundary inputs and the recorded inputs
+    visible = testset.build(spec).visible
+    assert any(c.origin.startswith("boundary") for c in visible)
+    known = sorted(
+        {(float(c.kwargs["dx"]), float(c.kwargs["dy"]), float(c.kwargs["theta"])) for c in visible}
+    )
     memoriser = (
         f"import math\nKNOWN = set({known!r})\n"
         "def range_bearing(dx, dy, theta):\n"
@@ -137,9 +155,11 @@ def test_hidden_seed_runs_inputs_no_recording_holds() -> None:
     assert kind.check_source(spec, memoriser, "m.py").passed  # type: ignore[attr-defined]
     hidden = kind.check_source(spec, memoriser, "m.py", hidden_seed=12345)  # type: ignore[attr-defined]
     assert hidden.status == "failed" and hidden.details["hidden"] is True
-    assert "Found by the hidden checks" in hidden.feedback
+    assert "the hidden checks drew" in hidden.feedback
     honest = kind.check_source(spec, SOLUTION, "m.py", hidden_seed=12345)  # type: ignore[attr-defined]
-    assert honest.passed and honest.details["hidden_examples"] >= 100
+    # every input the hidden run drew, less those drawn twice or already visible (kept once)
+    hidden_cases = [c for c in testset.build(spec, hidden_seeds=[12345]).cases if c.hidden]
+    assert honest.passed and honest.details["hidden_examples"] == len(hidden_cases) > 0
     assert "12345" not in json.dumps([honest.details, hidden.details])  # the secret stays secret
 
 

@@ -12,7 +12,7 @@ from collections.abc import Callable, Iterator
 
 import pytest
 
-from slamcourse.sandbox import Limits, LoadResult, Worker, probe_isolation
+from slamcourse.sandbox import Limits, LoadResult, Worker, Zygote, probe_isolation
 
 LEVELS = ["namespaces", "rlimits"]
 
@@ -53,20 +53,29 @@ def ns_level() -> str:
     return "namespaces"
 
 
+@pytest.fixture(params=["spawned", "forked"])
+def how(request: pytest.FixtureRequest) -> str:
+    """How the worker starts: its own interpreter (``Worker.spawn``) or forked by a zygote
+    (``Zygote.worker``, the batch grader's way); every defence must hold for both."""
+    value: str = request.param
+    return value
+
+
 @pytest.fixture
-def make_worker(level: str) -> Iterator[MakeWorker]:
+def make_worker(level: str, how: str) -> Iterator[MakeWorker]:
     """``make_worker(source, function="f", params=None, limits=None, filename=None)`` →
     ``(worker, load_result)``; the source is dedented; every worker is closed after the test."""
-    yield from _factory(level)
+    yield from _factory(level, how)
 
 
 @pytest.fixture
-def make_ns_worker(ns_level: str) -> Iterator[MakeWorker]:
-    yield from _factory(ns_level)
+def make_ns_worker(ns_level: str, how: str) -> Iterator[MakeWorker]:
+    yield from _factory(ns_level, how)
 
 
-def _factory(level: str) -> Iterator[MakeWorker]:
+def _factory(level: str, how: str = "spawned") -> Iterator[MakeWorker]:
     workers: list[Worker] = []
+    zygotes: list[Zygote] = []
 
     def make(
         source: str,
@@ -75,7 +84,12 @@ def _factory(level: str) -> Iterator[MakeWorker]:
         limits: Limits | None = None,
         filename: str | None = None,
     ) -> tuple[Worker, LoadResult]:
-        worker = Worker.spawn(limits=limits or Limits(), force=level)
+        if how == "forked":
+            zygote = Zygote.spawn(force=level)
+            zygotes.append(zygote)
+            worker = zygote.worker(limits or Limits())
+        else:
+            worker = Worker.spawn(limits=limits or Limits(), force=level)
         workers.append(worker)
         name = filename or f"{function}.py"
         return worker, worker.load(textwrap.dedent(source), name, function, params)
@@ -85,3 +99,5 @@ def _factory(level: str) -> Iterator[MakeWorker]:
     finally:
         for worker in workers:
             worker.close()
+        for zygote in zygotes:
+            zygote.close()

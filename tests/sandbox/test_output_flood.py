@@ -99,7 +99,8 @@ def test_muted_stream_still_behaves_like_a_stream(make_worker: MakeWorker) -> No
 
 def test_verdicts_say_the_output_was_cut() -> None:
     """Through the grader: a correct, chatty submission passes and is told its output was cut;
-    one that writes around the muted streams fails with a message that says why."""
+    one whose single call floods (3 MB) is stopped at once and told to print less; one that
+    writes around the muted streams fails with a message that says why."""
     from slamcourse.course.loader import load_course
     from slamcourse.kinds import get_kind
     from tests.conftest import FIXTURE_COURSE
@@ -107,12 +108,16 @@ def test_verdicts_say_the_output_was_cut() -> None:
     spec = load_course(FIXTURE_COURSE).exercise("basics/range-bearing")
     kind = get_kind("code")
     body = "    return math.hypot(dx, dy), math.atan2(dy, dx) - theta\n"
-    chatty = "import math\ndef range_bearing(dx, dy, theta):\n    print('x' * 3_000_000)\n" + body
-    start = time.monotonic()
+    chatty = "import math\ndef range_bearing(dx, dy, theta):\n    print('x' * 20_000)\n" + body
     verdict = kind.check_source(spec, chatty, "chatty.py")  # type: ignore[attr-defined]
-    assert verdict.passed and verdict.details["output_cut"] is True  # 300 MB printed
+    assert verdict.passed and verdict.details["output_cut"] is True  # 2.6 MB in all
     assert "output beyond the first 1 MiB per stream was cut" in verdict.feedback
-    assert time.monotonic() - start < 10.0
+    flood = "import math\ndef range_bearing(dx, dy, theta):\n    print('x' * 3_000_000)\n" + body
+    start = time.monotonic()
+    verdict = kind.check_source(spec, flood, "flood.py")  # type: ignore[attr-defined]
+    assert time.monotonic() - start < 5.0
+    assert verdict.status == "failed" and verdict.details["flooded"] == 1
+    assert "more than 1 MiB of output in one call (test input 1 of" in verdict.feedback
     around = (
         "import math, os\ndef range_bearing(dx, dy, theta):\n"
         "    os.write(1, b'y' * 3_000_000)\n" + body

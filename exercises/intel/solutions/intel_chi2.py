@@ -1,6 +1,8 @@
 import math
 
 import numpy as np
+from scipy.sparse import coo_matrix
+from scipy.sparse.linalg import spsolve
 
 
 def wrap(a):
@@ -44,22 +46,32 @@ def chi2(poses, edges):
 
 
 def gauss_newton(poses, edges, iterations):
+    """Undamped Gauss-Newton, pose 0 fixed. H is sparse (a 3x3 block per pose and one per
+    edge's pair of poses), so it is assembled from (row, column, value) triplets and solved
+    with scipy's sparse LU, which orders the columns (COLAMD) to keep the fill small."""
     x = np.array(poses, dtype=float)
     n = len(x)
+    block = np.arange(3)
+    rr = np.repeat(block, 3)  # row offsets of a 3x3 block, row by row
+    cc = np.tile(block, 3)  # column offsets
     for _ in range(iterations):
-        H = np.zeros((3 * n, 3 * n))
+        rows, cols, vals = [], [], []
         b = np.zeros(3 * n)
         for i, j, z, O in edges:
             e = edge_error(x[i], x[j], z)
             A, B = edge_jacobians(x[i], x[j], z)
-            si, sj = slice(3 * i, 3 * i + 3), slice(3 * j, 3 * j + 3)
-            H[si, si] += A.T @ O @ A
-            H[si, sj] += A.T @ O @ B
-            H[sj, si] += B.T @ O @ A
-            H[sj, sj] += B.T @ O @ B
-            b[si] += A.T @ O @ e
-            b[sj] += B.T @ O @ e
-        dx = np.linalg.solve(H[3:, 3:], -b[3:])
+            for (p, P), (q, Q) in (((i, A), (i, A)), ((i, A), (j, B)),
+                                   ((j, B), (i, A)), ((j, B), (j, B))):
+                rows.append(3 * p + rr)
+                cols.append(3 * q + cc)
+                vals.append((P.T @ O @ Q).ravel())
+            b[3 * i:3 * i + 3] += A.T @ O @ e
+            b[3 * j:3 * j + 3] += B.T @ O @ e
+        rows, cols, vals = np.concatenate(rows), np.concatenate(cols), np.concatenate(vals)
+        keep = (rows >= 3) & (cols >= 3)  # pose 0 is held fixed: drop its rows and columns
+        H = coo_matrix((vals[keep], (rows[keep] - 3, cols[keep] - 3)),
+                       shape=(3 * n - 3, 3 * n - 3)).tocsc()  # duplicates are summed
+        dx = spsolve(H, -b[3:])
         x[1:] += dx.reshape(-1, 3)
         x[:, 2] = [wrap(t) for t in x[:, 2]]
     return x

@@ -7,17 +7,20 @@ rules are about submissions themselves (is it readable, made for this course, ar
 seeds the learner's own) and the hidden checks of code exercises (below). A submission's problem
 becomes that submission's error; the batch goes on.
 
-Hidden checks: in grading mode a code exercise that passes its visible check is run again on
-``hidden_runs`` further property tests, each drawn with a seed derived from the grader's secret,
-the learner id and the exercise (:func:`hidden_seed`); the learner's local check always uses
-the exercise's fixed seed, so these inputs are new to it. Only the number of failed hidden runs
-is reported, never their inputs.
+A class is the unit of scale: what does not depend on the learner is paid once per batch.
+Each code exercise's test set (:mod:`slamcourse.grading.testset`: its edge examples, the
+boundary inputs of its argument types, the inputs a learner's own check draws, and
+``hidden_runs`` × ``max_examples`` hidden inputs drawn with seeds derived from the grader's
+secret and the exercise, :func:`~slamcourse.grading.testset.hidden_seed`), with the
+reference's output on every input, is built once (in parallel, in the grading processes) and
+shared by every submission; a submission's code exercises then run in workers forked from one
+sandboxed zygote per submission, each a fresh process, graded in one pass over visible and
+hidden inputs. Only the number of hidden runs that failed is reported, never their inputs.
 """
 
 from __future__ import annotations
 
-import hashlib
-import hmac
+import contextlib
 import re
 import shutil
 import tempfile
@@ -39,12 +42,13 @@ from slamcourse.batch.submission import (
     read,
 )
 from slamcourse.errors import SlamcourseError, UsageError
+from slamcourse.grading.testset import SharedTests, TestSet
 
 if TYPE_CHECKING:
     from slamcourse.engine import Engine
 
 RESULT_FORMAT = 1
-TIMING_FIELDS = frozenset({"seconds"})
+TIMING_FIELDS = frozenset({"seconds", "learner_seconds"})
 """Keys whose values change from run to run; everything else is deterministic."""
 MAX_ANSWER = 10_000
 """Characters of a text answer the grader reads (answers are numbers, vectors, formulas)."""
@@ -83,6 +87,7 @@ class ExerciseGrade:
     command: str | None = None  # how the learner reproduces the visible check locally
     tests: list[dict[str, Any]] = field(default_factory=list)
     seconds: float = 0.0
+    learner_seconds: float = 0.0  # of ``seconds``, the time inside the learner's own code
 
     @property
     def passed(self) -> bool:
@@ -105,6 +110,7 @@ class ExerciseGrade:
             "command": self.command,
             "tests": self.tests,
             "seconds": self.seconds,
+            "learner_seconds": self.learner_seconds,
         }
 
     @classmethod
@@ -206,40 +212,44 @@ def output_names(paths: Sequence[Path]) -> list[str]:
 # ------------------------------------------------------------------------------ hidden checks
 
 
-def hidden_seed(secret: str, learner: str, exercise_id: str, run: int) -> int:
-    """The Hypothesis seed of hidden run ``run``: 32 bits of HMAC-SHA256(secret, learner, id,
-    run). With a secret only the instructor knows, no learner can predict it."""
-    from slamcourse.grading.properties import exercise_seed
-
-    message = f"{learner}\0{exercise_id}\0{run}".encode()
-    digest = hmac.new(secret.encode(), message, hashlib.sha256).digest()
-    seed = int.from_bytes(digest[:4], "little")
-    return seed if seed != exercise_seed(exercise_id) else seed ^ 1
+_SHARED: dict[str, SharedTests] = {}
+"""The batch's test sets in this process, by the file they were loaded from."""
 
 
-def _hidden_checks(
-    engine: Engine, exercise_id: str, source: str, learner: str, options: GradeOptions
-) -> tuple[int, bool]:
-    """Failed hidden runs, and whether one of them was the grader's own fault.
+def _shared_tests(path: str | None, options: GradeOptions) -> SharedTests:
+    """The test sets a batch built (``path``: its pickle), else a fresh lazy set."""
+    key = path or f"lazy:{options.secret}:{options.hidden_runs}"
+    if key not in _SHARED:
+        _SHARED[key] = (
+            SharedTests.load(Path(path))
+            if path
+            else SharedTests(options.secret, options.hidden_runs)
+        )
+    return _SHARED[key]
 
-    Each run is the engine's grading mode: the visible inputs (replayed), then as many more
-    drawn with a seed derived from the instructor's secret, which the learner never met."""
-    failed, grader_fault = 0, False
-    for run in range(options.hidden_runs):
-        verdict = engine.submit_code(
-            exercise_id,
-            source=source,
-            hidden_seed=hidden_seed(options.secret, learner, exercise_id, run),
-        ).verdict
-        if not verdict.passed:
-            failed += 1
-            grader_fault = grader_fault or verdict.status == "error"
-    return failed, grader_fault
+
+def build_tests(course: Path | None, exercise_id: str, secret: str, runs: int) -> TestSet:
+    """One exercise's test set for a batch (run in a grading process)."""
+    from slamcourse.course.loader import load_course
+    from slamcourse.course.locate import course_root
+
+    spec = load_course(course_root(course)).exercise(exercise_id)
+    return SharedTests(secret, runs).get(spec)
 
 
 # ------------------------------------------------------------------------------ one submission
 
 _COURSE_HASHES: dict[Path, str] = {}
+_COURSES: dict[Path, Any] = {}
+
+
+def _course(root: Path) -> Any:
+    """The course at ``root``, loaded once per grading process (content, no learner state)."""
+    from slamcourse.course.loader import load_course
+
+    if root not in _COURSES:
+        _COURSES[root] = load_course(root)
+    return _COURSES[root]
 
 
 def _course_identity(root: Path) -> str:
@@ -298,7 +308,7 @@ def _command(answer: Answer) -> str:
 
 
 def _grade_answer(
-    engine: Engine, sub: Submission, answer: Answer, options: GradeOptions
+    engine: Engine, sub: Submission, answer: Answer, options: GradeOptions, shared: SharedTests
 ) -> ExerciseGrade:
     spec = engine.exercise(answer.exercise)
     chapter = engine.course.chapter_of(spec.id).number
@@ -309,7 +319,7 @@ def _grade_answer(
             if spec.kind != "code":
                 raise SubmissionError(f"{spec.id} is a {spec.kind} exercise: answer it with text")
             source = _text(sub.source(answer), answer.file)
-            result = engine.submit_code(spec.id, source=source)
+            result = engine.submit_code(spec.id, source=source, tests=shared.get(spec))
         else:
             if spec.kind == "code":
                 raise SubmissionError(f"{spec.id} is a code exercise: hand in a file")
@@ -339,24 +349,19 @@ def _grade_answer(
     if spec.kind == "code" and options.hidden_runs > 0:
         runs = options.hidden_runs
         checks = f"{runs} hidden check{'s' if runs != 1 else ''}"
+        details = verdict.details
         if verdict.passed:
-            failed, fault = _hidden_checks(
-                engine, spec.id, source, sub.manifest.learner_id, options
-            )
+            hidden = {"runs": runs, "failed": 0}
+            feedback += f"\n\nThe {checks} (inputs your local check never drew) passed too."
+        elif details.get("hidden"):
+            failed = int(details.get("hidden_failed", 1)) or 1
             hidden = {"runs": runs, "failed": failed}
-            if fault:
-                status, score = "error", 0.0
-                feedback += f"\n\nThe {checks} could not all run (a problem on the grader's side)."
-            elif failed:
-                status, score = "failed", 0.0
-                feedback += (
-                    f"\n\n{failed} of {checks} failed: property tests on inputs your local "
-                    "check never drew. Your function is right on the inputs you saw but not "
-                    "on all the inputs the prompt allows; look for a case you did not handle."
-                )
-            else:
-                feedback += f"\n\nThe {checks} (inputs your local check never drew) passed too."
-        else:
+            feedback += (
+                f"\n\n{failed} of {checks} failed: property tests on inputs your local "
+                "check never drew. Your function is right on the inputs you saw but not "
+                "on all the inputs the prompt allows; look for a case you did not handle."
+            )
+        elif status != "error":
             hidden = {"runs": 0, "failed": 0}
             feedback += f"\n\nThe {checks} run only once the visible check passes."
     return ExerciseGrade(
@@ -374,6 +379,7 @@ def _grade_answer(
         command=_command(answer),
         tests=result.tests,
         seconds=time.perf_counter() - start,
+        learner_seconds=verdict.learner_seconds,
     )
 
 
@@ -393,9 +399,13 @@ def _cap(text: str) -> str:
     return text[:MAX_FEEDBACK] + f"\n\n… ({len(text) - MAX_FEEDBACK} more characters cut)"
 
 
-def grade_submission(path: Path, options: GradeOptions) -> SubmissionGrade:
+def grade_submission(
+    path: Path, options: GradeOptions, shared_path: str | None = None
+) -> SubmissionGrade:
     """Grade one submission in a fresh engine and temporary home; never raises for anything
-    the submission contains (its problems become ``status: error``)."""
+    the submission contains (its problems become ``status: error``). ``shared_path``: the
+    batch's test sets (:func:`grade_all` builds them once); without it they are built here as
+    needed and kept for the next submission graded in this process."""
     from slamcourse.course.locate import course_root
     from slamcourse.engine import Engine
     from slamcourse.settings import Settings
@@ -416,13 +426,20 @@ def grade_submission(path: Path, options: GradeOptions) -> SubmissionGrade:
             record=False,
         )
         code = any(a.file is not None for a in sub.manifest.answers)
-        with Engine.open(settings, with_progress=False, warm_sandbox=code) as engine:
+        shared = _shared_tests(shared_path, options)
+        with Engine.open(
+            settings,
+            with_progress=False,
+            warm_sandbox=code,
+            fork_workers=True,
+            course=_course(root),
+        ) as engine:
             warnings = _check_claims(sub, engine, root, name)
             given = {a.exercise: a for a in sub.manifest.answers}
             grades: list[ExerciseGrade] = []
             for ex in engine.course.exercise_ids:
                 if ex in given:
-                    grades.append(_grade_answer(engine, sub, given[ex], options))
+                    grades.append(_grade_answer(engine, sub, given[ex], options, shared))
                 else:
                     spec = engine.exercise(ex)
                     grades.append(
@@ -504,7 +521,11 @@ def grade_all(
     jobs: int = 1,
     on_done: Callable[[int, int, SubmissionGrade], None] | None = None,
 ) -> list[SubmissionGrade]:
-    """Grade ``paths`` (results in the order given); ``jobs`` > 1 grades in worker processes."""
+    """Grade ``paths`` (results in the order given); ``jobs`` > 1 grades in worker processes.
+
+    With several processes, each code exercise's test set is first built once, the exercises
+    spread over the processes, and handed to all of them; one process builds each set when it
+    first needs it and keeps it."""
     if jobs < 1:
         raise UsageError("--jobs must be at least 1")
     preflight(options)
@@ -515,12 +536,33 @@ def grade_all(
             results[i] = grade_submission(path, options)
             if on_done:
                 on_done(i + 1, total, results[i])  # type: ignore[arg-type]
-    else:
-        import multiprocessing
+        return [r for r in results if r is not None]
+    import multiprocessing
 
-        context = multiprocessing.get_context("forkserver")
+    from slamcourse.course.loader import load_course
+    from slamcourse.course.locate import course_root
+
+    root = course_root(options.course)
+    course = load_course(root)
+    code_ids = [ex for ex in course.exercise_ids if _is_code(course, ex)]
+    context = multiprocessing.get_context("forkserver")
+    scratch = Path(tempfile.mkdtemp(prefix="slamcourse-batch-"))
+    try:
         with ProcessPoolExecutor(max_workers=jobs, mp_context=context) as pool:
-            futures = {pool.submit(grade_submission, p, options): i for i, p in enumerate(paths)}
+            shared = SharedTests(options.secret, options.hidden_runs)
+            builds = {
+                pool.submit(build_tests, root, ex, options.secret, options.hidden_runs): ex
+                for ex in code_ids
+            }
+            for built in as_completed(builds):
+                with contextlib.suppress(Exception):  # left to each submission to report
+                    shared.sets[builds[built]] = built.result()
+            shared_path = scratch / "tests.pickle"
+            shared.save(shared_path)
+            futures = {
+                pool.submit(grade_submission, p, options, str(shared_path)): i
+                for i, p in enumerate(paths)
+            }
             for done, future in enumerate(as_completed(futures), start=1):
                 i = futures[future]
                 try:
@@ -531,7 +573,16 @@ def grade_all(
                     )
                 if on_done:
                     on_done(done, total, results[i])  # type: ignore[arg-type]
+    finally:
+        shutil.rmtree(scratch, ignore_errors=True)
     return [r for r in results if r is not None]
+
+
+def _is_code(course: Any, exercise_id: str) -> bool:
+    try:
+        return bool(course.exercise(exercise_id).kind == "code")
+    except SlamcourseError:
+        return False
 
 
 def summary_lines(grades: Sequence[SubmissionGrade]) -> list[str]:

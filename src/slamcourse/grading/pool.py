@@ -14,7 +14,7 @@ import threading
 from concurrent.futures import Future, ThreadPoolExecutor
 
 from slamcourse.errors import SandboxError
-from slamcourse.sandbox import Limits, Worker
+from slamcourse.sandbox import Limits, Worker, Zygote
 
 
 class WorkerPool:
@@ -23,6 +23,12 @@ class WorkerPool:
     ``keep_spare``: after each :meth:`take`, start the next worker at once (long-running faces:
     the browser, ``watch``, ``next``). A one-shot command starts one worker early with
     :meth:`warm` and keeps no spare, so no interpreter is started for nothing.
+
+    ``fork``: workers are forked from one sandboxed :class:`~slamcourse.sandbox.Zygote`
+    (started by :meth:`warm` or the first :meth:`take`), each a fresh process with its own
+    limits, pipes and cgroup, without an interpreter start or numpy import of its own. For an
+    engine that serves ONE learner's submission (the batch grader): workers of one zygote
+    share its namespaces, so a zygote never serves two learners.
     """
 
     def __init__(
@@ -31,10 +37,13 @@ class WorkerPool:
         require_isolation: bool = False,
         limits: Limits | None = None,
         keep_spare: bool = False,
+        fork: bool = False,
     ) -> None:
         self.require_isolation = require_isolation
         self.limits = limits
         self.keep_spare = keep_spare
+        self.fork = fork
+        self._zygote: Future[Zygote] | None = None
         self._lock = threading.Lock()
         self._spare: Future[Worker] | None = None
         self._spawner: ThreadPoolExecutor | None = None
@@ -46,14 +55,53 @@ class WorkerPool:
             Worker.spawn, limits=self.limits, require_isolation=self.require_isolation
         )
 
+    def _zygote_later(self) -> Future[Zygote]:
+        if self._zygote is not None and self._zygote.done():
+            try:
+                old: Zygote | None = self._zygote.result()
+            except SandboxError:
+                old = None
+            if old is None or not old.alive:  # e.g. the learner's code killed it
+                if old is not None:
+                    old.close()
+                self._zygote = None  # the next exercise gets a new one
+        if self._zygote is None:
+            if self._spawner is None:
+                self._spawner = ThreadPoolExecutor(
+                    max_workers=1, thread_name_prefix="sandbox-spawn"
+                )
+            self._zygote = self._spawner.submit(
+                Zygote.spawn, require_isolation=self.require_isolation
+            )
+        return self._zygote
+
     def warm(self) -> None:
         """Start a worker now, so the next :meth:`take` finds it ready (or nearly)."""
+        if self.fork:
+            with self._lock:
+                self._zygote_later()
+            return
         with self._lock:
             if self._spare is None:
                 self._spare = self._spawn_later()
 
-    def take(self) -> Worker:
-        """A fresh worker (the spare when it is alive); raises SandboxError when none can run."""
+    def take(self, limits: Limits | None = None) -> Worker:
+        """A fresh worker (the spare when it is alive); raises SandboxError when none can run.
+        ``limits`` other than the pool's: a worker started for them (a spare has the pool's)."""
+        if self.fork:
+            with self._lock:
+                zygote = self._zygote_later()
+            return zygote.result().worker(limits)
+        if limits is not None and limits != self.limits:
+            with self._lock:
+                if self._spawner is None:
+                    self._spawner = ThreadPoolExecutor(
+                        max_workers=1, thread_name_prefix="sandbox-spawn"
+                    )
+                own = self._spawner.submit(
+                    Worker.spawn, limits=limits, require_isolation=self.require_isolation
+                )
+            return own.result()
         with self._lock:
             pending, self._spare = self._spare, None
             if pending is None:
@@ -69,6 +117,11 @@ class WorkerPool:
         return worker
 
     def close(self) -> None:
+        with self._lock:
+            zygote, self._zygote = self._zygote, None
+        if zygote is not None:
+            with contextlib.suppress(SandboxError):
+                zygote.result().close()
         with self._lock:
             pending, self._spare = self._spare, None
             spawner, self._spawner = self._spawner, None

@@ -8,10 +8,11 @@ no example database, and the same explicit edge examples first.
 
 from __future__ import annotations
 
+import contextlib
 import copy
 import hashlib
 import threading
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -22,6 +23,43 @@ from slamcourse.sandbox import CallResult, LearnerFrame
 
 MAX_RECORDED = 20  # failing inputs kept for recognising misconceptions
 _HYPOTHESIS = threading.RLock()
+
+
+def hypothesis_lock() -> threading.RLock:
+    """One Hypothesis run at a time in this process (validation grades in threads)."""
+    return _HYPOTHESIS
+
+
+@contextlib.contextmanager
+def hypothesis_run() -> Iterator[None]:
+    """One Hypothesis run at a time, drawing the same inputs from the same seed in every
+    process: Hypothesis (6.1xx) also draws numbers it finds in the source of the non-library
+    modules a process happens to have imported ("local constants"), so that the same seed drew
+    other inputs in a fresh script, in a validator and in a batch's grading processes. Those
+    constants are switched off (and the cache of allowed constants emptied) for the run."""
+    with _HYPOTHESIS:
+        try:
+            from hypothesis.internal.conjecture import providers as module
+            from hypothesis.internal.constants_ast import Constants
+
+            providers: Any = module
+            empty = Constants(
+                integers=type(providers.GLOBAL_CONSTANTS.integers)(),
+                floats=type(providers.GLOBAL_CONSTANTS.floats)(key=providers.float_to_int),
+                bytes=type(providers.GLOBAL_CONSTANTS.bytes)(),
+                strings=type(providers.GLOBAL_CONSTANTS.strings)(),
+            )
+            get, cache = providers._get_local_constants, providers.CONSTANTS_CACHE.cache
+        except (ImportError, AttributeError, TypeError):  # another Hypothesis: nothing to do
+            yield
+            return
+        providers._get_local_constants = lambda: empty
+        cache.clear()  # allowed constants, computed with the local ones
+        try:
+            yield
+        finally:
+            providers._get_local_constants = get
+            cache.clear()
 
 
 @dataclass(frozen=True)
@@ -35,6 +73,7 @@ class Failure:
     kind: str  # "mismatch", "raised", "timeout", "crashed" or "protocol_error"
     frames: tuple[LearnerFrame, ...] = ()
     stdout: str = ""
+    origin: str = ""  # the test set's case origin (``example``, ``boundary: …``, ``hidden 1``)
 
 
 @dataclass
@@ -50,6 +89,11 @@ class Outcome:
     agreed: list[tuple[dict[str, Any], Any]] = field(default_factory=list)
     """``(input, reference value)`` of explicit examples the callee got right (collected with
     the failures): a misconception must be right there too to be named."""
+    failure_case: Any = None  # the test set's case of ``failure`` (grading.testset.Case)
+    output_cut: bool = False  # some of the callee's output was muted
+    flooded: int | None = None  # calls made when the callee's output was cut: grading stopped
+    hidden_failed: set[str] = field(default_factory=set)  # hidden runs with a failing input
+    call_seconds: float = 0.0  # wall time the callee reported for its calls
 
     @property
     def passed(self) -> bool:
@@ -158,7 +202,7 @@ def run(
     )(test)
     test = fixed_seed(seed)(test)
     try:
-        with _HYPOTHESIS:  # one Hypothesis run at a time in this process (validate uses threads)
+        with hypothesis_run():  # one at a time (validate uses threads), same draws everywhere
             test()
     except _Fatal as fatal:
         outcome.failure = fatal.failure
@@ -172,84 +216,6 @@ def run(
     return outcome
 
 
-def replay(
-    *,
-    inputs: Sequence[dict[str, Any]],
-    signature: Sequence[str],
-    returns: Any,
-    tolerance: Tolerance,
-    reference: Callable[..., Any],
-    call: Callable[[Sequence[Any]], CallResult],
-    seed: int,
-) -> Outcome | None:
-    """Check recorded inputs in order, without Hypothesis (see :mod:`.replay`).
-
-    Returns the passing outcome; a fatal one (timeout, crash: the same input the full run would
-    stop at); or, at the first input the callee gets wrong, a failing one whose ``failure`` is
-    that input, not shrunk (the caller normally runs Hypothesis in full to shrink it). None when
-    the reference itself fails on a recorded input (the full run reports that properly).
-    """
-    outcome = Outcome(seed=seed, replayed=True)
-    for kwargs in inputs:
-        outcome.examples += 1
-        try:
-            want = reference(**copy.deepcopy(kwargs))
-        except Exception:
-            return None
-        result = call([kwargs[name] for name in signature])
-        if result.status in ("timeout", "crashed", "protocol_error"):
-            outcome.failure = Failure(
-                kwargs, want, None, result.error, result.status, stdout=result.stdout
-            )
-            return outcome
-        if result.status == "raised":
-            outcome.failure = Failure(
-                kwargs, want, None, result.error, "raised", result.frames, result.stdout
-            )
-        else:
-            mismatch = compare(returns, result.value, want, tolerance)
-            if mismatch is None:
-                continue
-            outcome.failure = Failure(
-                kwargs, want, result.value, mismatch.message, "mismatch", stdout=result.stdout
-            )
-        outcome.failures.append(outcome.failure)
-        return outcome
-    return outcome
-
-
-def collect_failures(
-    outcome: Outcome,
-    *,
-    inputs: Sequence[dict[str, Any]],
-    signature: Sequence[str],
-    returns: Any,
-    tolerance: Tolerance,
-    reference: Callable[..., Any],
-    call: Callable[[Sequence[Any]], CallResult],
-) -> None:
-    """Add the inputs among ``inputs`` on which the callee returns a wrong value to
-    ``outcome.failures`` (evidence for recognising a misconception; the verdict's reported
-    failure stays the minimal one)."""
-    seen = [f.kwargs for f in outcome.failures]
-    for kwargs in inputs:
-        if kwargs in seen or len(outcome.failures) >= MAX_RECORDED:
-            continue
-        try:
-            want = reference(**copy.deepcopy(kwargs))
-        except Exception:
-            continue
-        result = call([kwargs[name] for name in signature])
-        if result.status != "ok":
-            if result.status in ("timeout", "crashed", "protocol_error"):
-                return
-            continue
-        if compare(returns, result.value, want, tolerance) is not None:
-            outcome.failures.append(Failure(kwargs, want, result.value, "", "mismatch"))
-        else:
-            outcome.agreed.append((kwargs, want))
-
-
 def matching_misconception(
     outcome: Outcome,
     returns: Any,
@@ -258,11 +224,13 @@ def matching_misconception(
 ) -> str | None:
     """The id of the first misconception that explains the learner's function.
 
-    It must return what the learner returned on every recorded failing input (only inputs where
-    the learner returned a value count), and it must also be right wherever the learner was
-    right: ``outcome.agreed`` holds the edge examples the learner got right (an input where the
-    learner's code raised is neither). A solution that special-cases one input is then not
-    blamed on a misconception that goes wrong on inputs the solution gets right.
+    It must reproduce the learner's results on every recorded failing input: return what the
+    learner returned where the learner returned a wrong value (where the learner's code
+    raised, the same idea may well have been written to return instead); and it must also be
+    right wherever the learner was right on the fixed inputs (``outcome.agreed``: edge
+    examples and boundary inputs). A solution that goes wrong in another way, or special-cases
+    one input, is then not blamed on a misconception that merely shares one wrong value with
+    it.
     """
     observed = [f for f in outcome.failures if f.kind == "mismatch"]
     if not observed:
@@ -270,7 +238,7 @@ def matching_misconception(
     for mid, fn in candidates:
         try:
             if all(
-                compare(returns, f.got, fn(**copy.deepcopy(f.kwargs)), tolerance) is None
+                _reproduces(returns, f.got, fn(**copy.deepcopy(f.kwargs)), tolerance, f.expected)
                 for f in observed
             ) and all(
                 compare(returns, to_plain(fn(**copy.deepcopy(kwargs))), want, tolerance) is None
@@ -280,3 +248,41 @@ def matching_misconception(
         except Exception:  # a misconception undefined on this input does not match
             continue
     return None
+
+
+DIVERGED = 1e6
+"""A result this many times farther from the reference's than the reference's own size has
+diverged (an optimiser that blew up): two diverged results are the same mistake, whatever
+digits the chaos left them with."""
+
+
+def _reproduces(
+    returns: Any, got: Any, theirs: Any, tolerance: Tolerance, expected: Any = None
+) -> bool:
+    """Whether a misconception's result ``theirs`` is what the learner returned (``got``):
+    within the tolerance, or where a diverging mistake blows up (NaN, infinity, or both
+    :data:`DIVERGED` times off the reference's value ``expected``), in the same places."""
+    if compare(returns, got, theirs, tolerance) is None:
+        return True
+    import numpy as np
+
+    try:
+        a = np.asarray(to_plain(got), dtype=float)
+        b = np.asarray(to_plain(theirs), dtype=float)
+        want = np.asarray(to_plain(expected), dtype=float) if expected is not None else None
+    except (TypeError, ValueError):
+        return False
+    if a.shape != b.shape:
+        return False
+    blown_a, blown_b = ~np.isfinite(a), ~np.isfinite(b)
+    if want is not None and want.shape == a.shape and np.isfinite(want).all():
+        limit = DIVERGED * np.maximum(1.0, np.abs(want))
+        with np.errstate(invalid="ignore", over="ignore"):
+            blown_a |= np.abs(a - want) > limit
+            blown_b |= np.abs(b - want) > limit
+    if not (blown_a == blown_b).all():
+        return False
+    keep = ~blown_a
+    return bool(
+        np.allclose(a[keep], b[keep], rtol=tolerance.rtol, atol=tolerance.atol, equal_nan=True)
+    )

@@ -43,12 +43,15 @@ SHIPPED_FORMAT = 1
 
 @lru_cache(maxsize=1)
 def _grader_digest() -> str:
-    """The grader's own code that decides how inputs are drawn."""
-    from slamcourse.grading import properties, strategies
+    """The grader's own code that decides how inputs are drawn (the strategies, and the draw
+    in :mod:`~slamcourse.grading.testset`)."""
+    import inspect
+
+    from slamcourse.grading import strategies, testset
 
     digest = hashlib.sha256()
-    for module in (strategies, properties):
-        digest.update(Path(str(module.__file__)).read_bytes())
+    digest.update(Path(str(strategies.__file__)).read_bytes())
+    digest.update(inspect.getsource(testset.draw).encode())  # the draw only: grading may change
     return digest.hexdigest()
 
 
@@ -198,6 +201,11 @@ def save(key: str, inputs: list[dict[str, Any]]) -> None:
         os.replace(tmp, path)
     except (OSError, ValueError, TypeError):
         return
+
+
+def encode(value: Any) -> Any:
+    """Plain JSON data for recorded inputs: tuples, dicts and arrays tagged as on the wire."""
+    return _encode(value)
 
 
 def _encode(value: Any) -> Any:

@@ -60,6 +60,69 @@ def show(value: Any, limit: int = 200) -> str:
     return text if len(text) <= limit else text[: limit - 1] + "…"
 
 
+def _numbers(value: Any) -> list[float] | None:
+    if isinstance(value, bool):
+        return None
+    if isinstance(value, int | float):
+        return [float(value)]
+    if isinstance(value, list | tuple):
+        out: list[float] = []
+        for v in value:
+            inner = _numbers(v)
+            if inner is None:
+                return None
+            out += inner
+        return out
+    return None
+
+
+def _digits(value: Any, digits: int) -> str:
+    if isinstance(value, bool) or value is None:
+        return repr(value)
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, float):
+        return repr(value) if digits >= 17 else f"{value:.{digits}g}"
+    if isinstance(value, list | tuple):
+        return "[" + ", ".join(_digits(v, digits) for v in value) + "]"
+    return str(value)
+
+
+def show_exact(value: Any, limit: int = 200) -> str:
+    """A test input as the learner must type it to reproduce the call: floats with every digit
+    (``3.141592653589793`` and the float next to it differ), ints as ints, tuples as tuples."""
+    if isinstance(value, tuple):
+        inner = ", ".join(show_exact(v, limit) for v in value)
+        text = f"({inner}{',' if len(value) == 1 else ''})"
+    elif isinstance(value, list):
+        text = "[" + ", ".join(show_exact(v, limit) for v in value) + "]"
+    elif hasattr(value, "tolist") and hasattr(value, "dtype"):
+        text = f"np.array({show_exact(value.tolist(), limit)})"
+    elif isinstance(value, str):
+        text = repr(value)
+    else:
+        text = _digits(value, 17)
+    return text if len(text) <= limit else text[: limit - 1] + "…"
+
+
+def show_pair(want: Any, got: Any, limit: int = 200) -> tuple[str, str]:
+    """``want`` and ``got`` as :func:`show` prints them, but with as many digits as it takes
+    for two different values to print differently ("expected -0.006984, got -0.006984" says
+    nothing): 6, 9, 12, then all 17 significant digits."""
+    a, b = show(want, limit), show(got, limit)
+    if a != b or _numbers(want) is None or _numbers(got) is None or want == got:
+        return a, b
+    for digits in (6, 9, 12, 17):
+        a, b = _digits(want, digits), _digits(got, digits)
+        if a != b:
+            break
+    return _cut(a, limit), _cut(b, limit)
+
+
+def _cut(text: str, limit: int) -> str:
+    return text if len(text) <= limit else text[: limit - 1] + "…"
+
+
 def to_plain(value: Any) -> Any:
     """Reference values (numpy, tuples) as the same plain data the sandbox returns."""
     tolist = getattr(value, "tolist", None)
@@ -70,9 +133,13 @@ def to_plain(value: Any) -> Any:
     return value
 
 
-def compare(spec: tuple[str, ...] | str, got: Any, want: Any, tol: Tolerance) -> Mismatch | None:
-    """``None`` when ``got`` (plain data from the learner) matches ``want`` (the reference)."""
-    want = to_plain(want)
+def compare(
+    spec: tuple[str, ...] | str, got: Any, want: Any, tol: Tolerance, *, plain: bool = False
+) -> Mismatch | None:
+    """``None`` when ``got`` (plain data from the learner) matches ``want`` (the reference);
+    ``plain``: ``want`` is plain data already (a test set's expected values are)."""
+    if not plain:
+        want = to_plain(want)
     if isinstance(spec, tuple):
         if not isinstance(got, list):
             return Mismatch(f"expected {describe(spec)}, got {_what(got)}")
@@ -129,9 +196,15 @@ def _scalar(kind: str, got: Any, want: Any, tol: Tolerance) -> str | None:
     if kind == "angle":
         diff = abs(wrap_angle(number - target))
         ok = diff <= tol.atol + tol.rtol * abs(wrap_angle(target))
-        return None if ok else (f"expected {show(target)} (mod 2π), got {show(number)}")
+        if ok:
+            return None
+        want_text, got_text = show_pair(target, number)
+        return f"expected {want_text} (mod 2π), got {got_text}"
     ok = abs(number - target) <= tol.atol + tol.rtol * abs(target)
-    return None if ok else f"expected {show(target)}, got {show(number)}"
+    if ok:
+        return None
+    want_text, got_text = show_pair(target, number)
+    return f"expected {want_text}, got {got_text}"
 
 
 def _shape(value: Any) -> tuple[int, ...] | None:
@@ -144,7 +217,33 @@ def _shape(value: Any) -> tuple[int, ...] | None:
     return (len(value), *inner) if inner is not None else None
 
 
+def _close_arrays(got: Any, want: Any, tol: Tolerance) -> bool:
+    """The common case at numpy speed: ``got`` is a rectangular array of finite numbers (no
+    booleans) of ``want``'s shape within the tolerance. False means "look closely" (the walk
+    below finds the entry and says what is wrong), not necessarily a mismatch."""
+    import numpy as np
+
+    if not isinstance(got, list) or not isinstance(want, list):
+        return False
+    text = repr(got)  # a float or int never prints as True/False: booleans are not numbers
+    if "True" in text or "False" in text:
+        return False
+    try:
+        g = np.array(got)
+        w = np.array(want, dtype=float)
+    except (TypeError, ValueError):  # ragged, or not numbers
+        return False
+    if g.dtype.kind not in "if" or g.shape != w.shape:
+        return False
+    g = g.astype(float)
+    if not np.isfinite(g).all() or not np.isfinite(w).all():
+        return False
+    return bool((np.abs(g - w) <= tol.atol + tol.rtol * np.abs(w)).all())
+
+
 def _array(got: Any, want: Any, tol: Tolerance) -> Mismatch | None:
+    if _close_arrays(got, want, tol):
+        return None
     want_shape, got_shape = _shape(want), _shape(got)
     if got_shape is None:
         return Mismatch("the returned array is ragged (rows of different lengths)")

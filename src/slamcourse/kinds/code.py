@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import re
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any, ClassVar
 
@@ -53,6 +53,10 @@ class CodeOptions:
     max_examples: int
     tolerance: Tolerance
     limits: tuple[tuple[str, float], ...] = ()  # sandbox Limits overrides, e.g. call_seconds
+    types: tuple[Any, ...] = ()  # grading.domains argument types, one per signature parameter
+    valid: str | None = None  # reference.py function: is a derived boundary input in the domain
+    valid_line: int = 0
+    mutates: tuple[str, ...] = ()  # parameters the prompt allows the function to change in place
 
     def sandbox_limits(self) -> Any:
         """The worker's :class:`~slamcourse.sandbox.Limits`: the defaults with this exercise's
@@ -79,6 +83,9 @@ class CodeKind(Kind):
         "returns": True,
         "max_examples": False,
         "limits": False,
+        "types": False,
+        "valid": False,
+        "mutates": False,
     }
     misconception_key: ClassVar[str | None] = "function"
 
@@ -157,6 +164,7 @@ class CodeKind(Kind):
         max_examples = check.typed(raw, "max_examples", int, 200)
         tol = spec.tolerance if "tolerance" in raw else CODE_TOLERANCE
         limits = _parse_limits(raw, check)
+        types = _parse_types(raw, signature, arguments, check)
         return CodeOptions(
             function,
             signature,
@@ -171,6 +179,10 @@ class CodeKind(Kind):
             max_examples,
             tol,
             limits,
+            types=types,
+            valid=_parse_valid(raw, check),
+            valid_line=raw.line_of("valid"),
+            mutates=_parse_mutates(raw, signature, check),
         )
 
     # ------------------------------------------------------------------ grading
@@ -188,8 +200,14 @@ class CodeKind(Kind):
         }
 
     def how_to_answer(self, spec: ExerciseSpec, variant: Variant) -> str:
-        sig = f"{spec.options.function}({', '.join(spec.options.signature)})"
-        return f"Write `{sig}`, then submit it for checking."
+        """How to answer and the rules every code prompt states, derived from the exercise's
+        own options so they are always true: imports, tolerance, arguments left unchanged."""
+        opts: CodeOptions = spec.options
+        sig = f"{opts.function}({', '.join(opts.signature)})"
+        return (
+            f"Write `{sig}`, then submit it for checking. {IMPORTS_RULE} "
+            f"{tolerance_rule(opts.returns, opts.tolerance)} {mutation_rule(opts)}"
+        )
 
     def check(self, spec: ExerciseSpec, variant: Variant, answer: str) -> Verdict:
         return self.check_source(spec, answer, f"{spec.options.function}.py")
@@ -212,18 +230,22 @@ class CodeKind(Kind):
         spawn: Any = None,
         hidden_seed: int | None = None,
         shrink: bool = True,
+        tests: Any = None,
     ) -> Verdict:
-        """Grade learner ``source`` in a fresh sandboxed worker: ``spawn()`` hands one out (the
-        engine's pool); without it, or when the exercise sets its own ``limits`` (the pool's
-        workers have the default ones), one is spawned here.
+        """Grade learner ``source`` in a fresh sandboxed worker: ``spawn(limits)`` hands one out
+        (the engine's pool or a submission's zygote; ``limits`` is the exercise's own, or None
+        for the defaults); without it, one is spawned here.
 
-        ``hidden_seed``: after the ordinary run passes, run as many more inputs drawn with this
-        secret seed (grading mode: a batch grader's hidden checks; learners cannot have met
-        these inputs before). ``shrink=False`` reports the first failing input unshrunk (same
-        status; the validator uses it for mutants).
+        ``tests``: a prebuilt :class:`~slamcourse.grading.testset.TestSet` (a batch builds each
+        exercise's once, hidden inputs included); without it the visible test set is built
+        here, plus the inputs drawn with ``hidden_seed`` if given (grading mode). ``shrink``
+        lets Hypothesis shrink a failure on a visible input to a minimal one (a learner's check;
+        the batch grader and the validator report the first failing input instead: same
+        status).
         """
         from slamcourse.answers.text import unreadable_at
         from slamcourse.errors import GraderError
+        from slamcourse.grading import testset
         from slamcourse.sandbox import Worker
 
         bad = unreadable_at(source)
@@ -236,139 +258,144 @@ class CodeKind(Kind):
             return Verdict.unreadable(f"{filename} is larger than {MAX_SOURCE_BYTES // 1024} KiB")
         opts: CodeOptions = spec.options
         limits = opts.sandbox_limits()
+        timing = [0.0]  # seconds inside the learner's calls
         try:
-            if spawn is not None and limits is None:
-                worker = spawn()
-            else:  # start the interpreter now; it imports numpy while we prepare
+            # start the interpreter first: it imports numpy while the test set is built
+            if spawn is not None:
+                worker = spawn(limits)
+            else:
                 worker = Worker.spawn(limits=limits, require_isolation=require_isolation)
             with worker:
+                if tests is None:
+                    seeds = [hidden_seed] if hidden_seed is not None else []
+                    tests = testset.build(spec, hidden_seeds=seeds)
                 loaded = worker.load(source, filename, opts.function, opts.signature)
                 if not loaded.ok:
                     return _load_verdict(loaded, filename, opts)
-                return self._grade(
+                verdict = self._grade(
                     spec,
-                    worker.call,
-                    None,
+                    tests,
+                    worker.call_many,
+                    worker.call if shrink else None,
                     filename,
                     isolation=worker.isolation.level,
-                    hidden_seed=hidden_seed,
-                    shrink=shrink,
                     output_cut=loaded.output_cut,
+                    timing=timing,
                 )
+                return replace(verdict, learner_seconds=timing[0])
         except GraderError as exc:  # the grader's fault, said as such; no attempt is counted
             return Verdict("error", 0.0, f"Not graded (a problem on the grader's side): {exc}")
 
     def _grade(
         self,
         spec: ExerciseSpec,
+        tests: Any,
+        call_many: Any,
         call: Any,
-        strategy: Any,
         filename: str,
         *,
         isolation: str,
-        use_recording: bool = True,
-        hidden_seed: int | None = None,
-        shrink: bool = True,
         output_cut: bool = False,
+        timing: list[float] | None = None,
     ) -> Verdict:
-        from slamcourse.grading import replay as recording
-        from slamcourse.grading.properties import (
-            collect_failures,
-            exercise_seed,
-            matching_misconception,
-            run,
-        )
-        from slamcourse.grading.properties import replay as replay_inputs
+        """One pass over the test set ``tests`` (see :mod:`slamcourse.grading.testset`); with
+        ``call`` (a single-call function), a failure on a visible input is then shrunk by a
+        full Hypothesis run, which reports the smallest failing input it finds."""
+        from slamcourse.grading.properties import MAX_RECORDED, matching_misconception, run
+        from slamcourse.grading.returns import show_exact, show_pair, to_plain
+        from slamcourse.grading.testset import input_key, run_cases
 
         opts: CodeOptions = spec.options
         ref = reference.function(spec, spec.reference or "", spec.reference_line)
-        seed = exercise_seed(spec.id)
         # a failing input of a whole data set (intel/whole-graph: a 216 kB g2o text) makes
         # Hypothesis warn on stderr about its repr; the verdict shows the input abridged anyway
         warnings.filterwarnings("ignore", message="Generating overly large repr")
-        cut = [output_cut]
-
-        def watched(args: Any) -> Any:
-            result = call(args)
-            if result.output_cut:
-                cut[0] = True
-            return result
-
-        def property_run(run_seed: int, examples: Any) -> Any:
-            return run(
-                strategy=strategy if strategy is not None else self.strategy(spec),
-                examples=examples,
-                signature=opts.signature,
-                returns=opts.returns,
-                tolerance=opts.tolerance,
-                reference=ref,
-                call=watched,
-                max_examples=opts.max_examples,
-                seed=run_seed,
-                shrink=shrink,
-            )
-
-        # recorded inputs: the course's shipped recording, else this learner's cache
-        inputs, cache_key = None, None
-        if use_recording:
-            inputs = recording.load_shipped(spec, seed)
-            if inputs is None:
-                cache_key = recording.recording_key(spec, seed, opts.max_examples)
-                inputs = recording.load(cache_key)
-        outcome, replayed_failure = None, None
-        if inputs:
-            replayed = replay_inputs(
-                inputs=inputs,
-                signature=opts.signature,
-                returns=opts.returns,
-                tolerance=opts.tolerance,
-                reference=ref,
-                call=watched,
-                seed=seed,
-            )
-            if replayed is not None:
-                fatal = replayed.failure is not None and replayed.failure.kind not in (
-                    "mismatch",
-                    "raised",
-                )
-                if replayed.passed or fatal or not shrink:
-                    outcome = replayed
-                else:
-                    replayed_failure = replayed
-        if outcome is None:  # Hypothesis decides (and shrinks a failure)
-            outcome = property_run(seed, opts.examples)
-            if outcome.passed and replayed_failure is not None:
-                # a recorded input of this exercise's domain that this Hypothesis version did
-                # not draw: still a real failure, reported as found
-                outcome = replayed_failure
-            elif outcome.passed and cache_key is not None:
-                recording.save(cache_key, outcome.drawn)
+        outcome, _cases = run_cases(
+            tests,
+            call_many,
+            signature=opts.signature,
+            returns=opts.returns,
+            tolerance=opts.tolerance,
+            mutable=opts.mutates,
+        )
+        outcome.output_cut = outcome.output_cut or output_cut
+        if timing is not None:
+            timing[0] += outcome.call_seconds
+        failure = outcome.failure
+        case = outcome.failure_case
+        visible_total = len(tests.visible)
+        hidden_run = sum(1 for c in tests.cases[: outcome.examples] if c.hidden)
         details: dict[str, Any] = {
-            "examples": outcome.examples,
-            "seed": outcome.seed,
+            "examples": outcome.examples - hidden_run,
+            "seed": tests.seed,
             "isolation": isolation,
         }
-        hidden = False
-        if outcome.passed and hidden_seed is not None:
-            extra = property_run(hidden_seed, ())
-            details["hidden_examples"] = extra.examples
-            if not extra.passed:
-                hidden = True
-                details["hidden"] = True
-                outcome = extra
+        if tests.hidden_runs:
+            details["hidden_examples"] = hidden_run
+            details["hidden_runs"] = tests.hidden_runs
+            details["hidden_failed"] = len(outcome.hidden_failed)
+        shrunk = False
+        if (
+            failure is not None
+            and call is not None
+            and not case.hidden
+            and failure.kind in ("mismatch", "raised")
+        ):
+            full = run(
+                strategy=self.strategy(spec),
+                examples=opts.examples,
+                signature=opts.signature,
+                returns=opts.returns,
+                tolerance=opts.tolerance,
+                reference=ref,
+                call=call,
+                max_examples=opts.max_examples,
+                seed=tests.seed,
+            )
+            if full.failure is not None and full.failure.kind in ("mismatch", "raised"):
+                key = input_key(full.failure.kwargs)
+                known = [f for f in outcome.failures if input_key(f.kwargs) != key]
+                outcome.failure = failure = full.failure
+                outcome.failures = [full.failure, *known][:MAX_RECORDED]
+                same = [c for c in tests.cases if input_key(c.kwargs) == key]
+                if same:  # Hypothesis ended on an input of the test set (e.g. an example)
+                    case = same[0]
+                    failure = outcome.failure = replace(failure, origin=case.origin)
+                else:
+                    shrunk = True
         note = ""
-        if cut[0]:
+        if outcome.output_cut:
             details["output_cut"] = True
             note = "\n\nYour code printed a lot: output beyond the first 1 MiB per stream was cut."
-        failure = outcome.failure
-        if failure is None:
-            total = outcome.examples + details.get("hidden_examples", 0)
-            return Verdict.ok(
-                f"All {total} test inputs passed, edge cases included.{note}", **details
+        if failure is None and outcome.flooded is not None:
+            details["flooded"] = outcome.flooded
+            return Verdict.wrong(
+                f"Your function printed more than 1 MiB of output in one call (test input "
+                f"{outcome.flooded} of {len(tests.cases)}), so grading stopped there: remove or "
+                "shorten the print statements and check again.",
+                **details,
             )
-        from slamcourse.grading.returns import show, to_plain
-
-        args = ", ".join(f"{k}={show(v)}" for k, v in failure.kwargs.items())
+        if failure is None:
+            return Verdict.ok(
+                f"All {visible_total} test inputs passed, edge cases and boundary inputs "
+                f"included.{note}",
+                **details,
+            )
+        if case is not None and case.hidden and not shrunk:
+            details["hidden"] = True
+            what = {
+                "mismatch": "returns a wrong value",
+                "raised": "raises an exception",
+                "mutated": "changes its arguments in place",
+                "timeout": "does not finish in time",
+            }.get(failure.kind, "stops the grader's worker")
+            return Verdict.wrong(
+                f"All {visible_total} test inputs your own check uses passed, but on an input "
+                f"the hidden checks drew (which the prompt allows) `{opts.function}` "
+                f"{what}. Look for a case you did not handle.{note}",
+                **details,
+            )
+        args = ", ".join(f"{k}={show_exact(v)}" for k, v in failure.kwargs.items())
         details.update(
             input=failure.kwargs,
             expected=to_plain(failure.expected),
@@ -378,12 +405,14 @@ class CodeKind(Kind):
                 for f in failure.frames
             ],
         )
+        if failure.origin.startswith("boundary"):
+            details["boundary"] = failure.origin.split(": ", 1)[-1]
         call_text = f"{opts.function}({args})"
         if failure.kind == "timeout":
             return Verdict(
                 "timeout",
                 0.0,
-                f"{call_text} did not finish in time ({failure.message})."
+                f"`{call_text}` did not finish in time ({failure.message})."
                 f" Look for a loop that never ends.{note}",
                 details=details,
             )
@@ -396,7 +425,7 @@ class CodeKind(Kind):
                 else "Do not exit or write to the grader's channels; return the value."
             )
             return Verdict.wrong(
-                f"{call_text} stopped the grader's worker: {failure.message}. {advice}{note}",
+                f"`{call_text}` stopped the grader's worker: {failure.message}. {advice}{note}",
                 **details,
             )
         if failure.kind == "raised":
@@ -404,35 +433,29 @@ class CodeKind(Kind):
             text = f"`{call_text}` raised {_sentence(failure.message)}" + (
                 f"\n{where}" if where else ""
             )
+        elif failure.kind == "mutated":
+            text = f"`{call_text}`: {_sentence(failure.message)}"
         else:
-            text = (
-                f"Wrong result for `{call_text}`:\n\n"
-                f"- expected `{show(to_plain(failure.expected))}`\n"
-                f"- got `{show(failure.got)}`\n\n{_sentence(failure.message)}"
-            )
+            want_text, got_text = show_pair(to_plain(failure.expected), failure.got)
+            text = f"Wrong result for `{call_text}`: expected `{want_text}`, got `{got_text}`."
+            if not _restates_values(failure.message):  # where (an entry), what kind, a shape
+                text += f" {_sentence(failure.message)}"
         tried = f"{outcome.examples} test input{'s' if outcome.examples != 1 else ''}"
-        if hidden:
-            text += f"\n\nFound by the hidden checks ({tried} run)."
-        elif any(failure.kwargs == ex for ex in opts.examples):
-            text += f"\n\nThis is one of the exercise's fixed edge cases ({tried} run)."
-        elif outcome.replayed or not shrink:
-            text += f"\n\nThe first failing input found ({tried} run)."
-        else:
+        if shrunk:
             text += f"\n\nThe grader shrank the failure to this small input ({tried} run)."
+        elif failure.origin == "example":
+            text += f"\n\nThis is one of the exercise's fixed edge cases ({tried} run)."
+        elif failure.origin.startswith("boundary"):
+            text += (
+                f"\n\nA boundary input of the declared argument types "
+                f"({details['boundary']}; {tried} run)."
+            )
+        else:
+            text += f"\n\nThe first failing input found ({tried} run)."
         text += note
         candidates = [
             (m.id, reference.function(spec, m.function or "", m.line)) for m in spec.misconceptions
         ]
-        if failure.kind == "mismatch":  # more evidence: every explicit edge example, in order
-            collect_failures(
-                outcome,
-                inputs=opts.examples,
-                signature=opts.signature,
-                returns=opts.returns,
-                tolerance=opts.tolerance,
-                reference=ref,
-                call=watched,
-            )
         found = matching_misconception(outcome, opts.returns, opts.tolerance, candidates)
         if found:
             m = next(m for m in spec.misconceptions if m.id == found)
@@ -444,23 +467,25 @@ class CodeKind(Kind):
     def self_test(self, spec: ExerciseSpec, variant: Variant) -> list[Problem]:
         """Solution passes, starter fails, every mutant fails, every correct variant passes
         (each through the real sandbox, a fresh worker each), every misconception fails and is
-        recognised as itself."""
+        recognised as itself; all against one test set, built once."""
+        from slamcourse.grading import testset
         from slamcourse.grading.properties import TrustedCallee
 
         problems: list[Problem] = []
         if variant.seed != 0:
             return problems  # Hypothesis covers the inputs; one run is enough
-        problems += self.check_submissions(spec)
-        strategy = self.strategy(spec)
+        tests = testset.build(spec)
+        problems += self.check_submissions(spec, tests=tests)
+        problems += self.boundary_problems(spec, tests)
         for m in spec.misconceptions:
-            fn = reference.function(spec, m.function or "", m.line)
+            callee = TrustedCallee(reference.function(spec, m.function or "", m.line))
             verdict = self._grade(
                 spec,
-                TrustedCallee(fn).call,
-                strategy,
+                tests,
+                lambda many, callee=callee: [callee.call(args) for args in many],
+                callee.call,
                 "reference.py",
                 isolation="trusted",
-                use_recording=False,
             )
             if verdict.passed:
                 problems.append(
@@ -482,15 +507,52 @@ class CodeKind(Kind):
                 )
         return problems
 
-    def check_submissions(self, spec: ExerciseSpec, *, jobs: int = 2) -> list[Problem]:
+    def boundary_problems(self, spec: ExerciseSpec, tests: Any) -> list[Problem]:
+        """Every boundary class the declared argument types call for is drawn (at least one
+        input of it lies in the exercise's domain), and the exercise declares its types."""
+        opts: CodeOptions = spec.options
+        if not opts.types:
+            return [
+                problem(
+                    spec,
+                    spec.line,
+                    "no 'types:' for the arguments, so no boundary inputs are drawn; declare "
+                    "what each argument is (angle, pose, covariance, count, g2o, …; see "
+                    "docs/authoring.md, 'Argument types and boundary inputs')",
+                )
+            ]
+        from slamcourse.grading.domains import boundary_classes
+
+        missing = sorted(set(boundary_classes(opts.types)) - set(tests.boundary_classes))
+        if not missing:
+            return []
+        return [
+            problem(
+                spec,
+                spec.line,
+                f"no input of the boundary class{'es' if len(missing) > 1 else ''} "
+                f"{', '.join(missing)} lies in the exercise's domain (each derived input was "
+                "outside a declared range, rejected by 'valid', or undefined for the "
+                "reference); narrow the argument's type or widen the strategy",
+            )
+        ]
+
+    def check_submissions(
+        self, spec: ExerciseSpec, *, jobs: int = 2, tests: Any = None
+    ) -> list[Problem]:
         """Grade the solution, the starter, the mutants and the correct variants exactly as a
-        learner's files (the solution first, alone: its run fills the recording the others
-        replay; then the rest, ``jobs`` at a time)."""
+        learner's files, ``jobs`` at a time, against one test set (``tests``, or built here):
+        the references are computed once, and each file gets a fresh worker forked from one
+        zygote, so no file pays an interpreter start."""
         from concurrent.futures import ThreadPoolExecutor
 
         from slamcourse.course.loader import relpath
+        from slamcourse.grading import testset
+        from slamcourse.sandbox import Zygote
 
         opts: CodeOptions = spec.options
+        if tests is None:
+            tests = testset.build(spec)
         mutants, variants = submission_files(spec)
         problems: list[Problem] = []
         runs: list[tuple[str, Path, bool, str]] = [
@@ -510,11 +572,20 @@ class CodeKind(Kind):
                     )
                 runs.append((kind_, path, want_pass, label or ""))
 
-        def grade(path: Path, want_pass: bool) -> Verdict:
-            source = read_course_file(path, spec.course_root)
-            return self.check_source(spec, source, path.name, shrink=want_pass)
+        runs.insert(0, ("solution", opts.solution, True, ""))
+        # the course's own files: one zygote serves them all (a learner's never share one)
+        with Zygote.spawn() as zygote:
 
-        solution = grade(opts.solution, True)
+            def grade(path: Path) -> Verdict:
+                source = read_course_file(path, spec.course_root)
+                return self.check_source(
+                    spec, source, path.name, shrink=False, tests=tests, spawn=zygote.worker
+                )
+
+            with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
+                verdicts = list(pool.map(lambda r: grade(r[1]), runs))
+        solution = verdicts.pop(0)
+        runs.pop(0)
         if not solution.passed:
             problems.append(
                 problem(
@@ -523,8 +594,6 @@ class CodeKind(Kind):
                     f"the solution {opts.solution.name} fails: {_first(solution.feedback)}",
                 )
             )
-        with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
-            verdicts = list(pool.map(lambda r: grade(r[1], r[2]), runs))
         for (kind_, path, _want, label), verdict in zip(runs, verdicts, strict=True):
             if kind_ == "starter":
                 if verdict.passed:
@@ -565,6 +634,37 @@ class CodeKind(Kind):
                     )
                 )
         return problems
+
+
+IMPORTS_RULE = "You may import the Python standard library, numpy and scipy (nothing else)."
+
+
+def tolerance_rule(returns: Any, tol: Tolerance) -> str:
+    """One sentence: how returned values are compared (what ``grading.returns`` does)."""
+    kinds = {returns} if isinstance(returns, str) else set(returns)
+    window = f"|got − expected| ≤ {tol.atol:g} + {tol.rtol:g}·|expected|"
+    parts = []
+    if kinds & {"number", "angle", "array"}:
+        where = " per entry" if "array" in kinds or len(kinds) > 1 else ""
+        parts.append(f"numbers are accepted when {window}{where}")
+    if "angle" in kinds:
+        parts.append("angles modulo 2π")
+    if kinds & {"integer", "boolean"}:
+        parts.append(
+            "whole numbers and booleans must be exact"
+            if {"integer", "boolean"} <= kinds
+            else ("whole numbers must be exact" if "integer" in kinds else "booleans must be exact")
+        )
+    text = "; ".join(parts)
+    return f"Results: {text}." if text else ""
+
+
+def mutation_rule(opts: CodeOptions) -> str:
+    """One sentence: which arguments the function may change in place (by default none)."""
+    if not opts.mutates:
+        return "Leave the arguments as given: return new values, never change an argument."
+    names = ", ".join(f"`{n}`" for n in opts.mutates)
+    return f"The function may change {names} in place; leave the other arguments as given."
 
 
 SUBMISSION_TAGS = {"mutant": "mistake", "variant": "method"}
@@ -667,6 +767,46 @@ def _parse_limits(raw: LineDict, check: Checker) -> tuple[tuple[str, float], ...
     return tuple(sorted(found))
 
 
+def _parse_types(
+    raw: LineDict, signature: tuple[str, ...], arguments: list[Any], check: Checker
+) -> tuple[Any, ...]:
+    """``types:`` (what each parameter is: grading.domains), checked against the signature
+    and the examples; without it, the types that ``arguments:`` ranges imply (float → real,
+    int → count, choice → choice), so simple exercises get boundary inputs too."""
+    from slamcourse.grading import domains
+
+    if "types" not in raw:
+        return domains.types_from_arguments(arguments)
+    types = domains.parse_types(raw["types"], signature, check, line=raw.line_of("types"))
+    items = raw.get("examples")
+    if isinstance(items, list):
+        for i, item in enumerate(items):
+            if not isinstance(item, dict):
+                continue
+            line = items.line_of(i) if isinstance(items, LineList) else raw.line
+            for t in types:
+                if t.name in item:
+                    why = domains.outside(t, item[t.name])
+                    if why:
+                        check.add(line, f"example value {t.name}: {why}")
+    return types
+
+
+def _parse_valid(raw: LineDict, check: Checker) -> str | None:
+    """``valid: <function in reference.py>``: which derived boundary inputs lie in the
+    exercise's domain (grading.domains.parse_valid)."""
+    from slamcourse.grading.domains import parse_valid
+
+    return parse_valid(raw.get("valid"), raw.line_of("valid"), check)
+
+
+def _parse_mutates(raw: LineDict, signature: tuple[str, ...], check: Checker) -> tuple[str, ...]:
+    """``mutates: [name, …]``: the parameters the function may change in place."""
+    from slamcourse.grading.domains import parse_mutates
+
+    return parse_mutates(raw.get("mutates"), raw.line_of("mutates"), signature, check)
+
+
 def _outside_domain(arg: Any, value: Any) -> str | None:
     """Why an edge example's value lies outside the argument's declared domain (the prompt's
     stated domain: graders draw only from it), or None."""
@@ -684,6 +824,27 @@ def _outside_domain(arg: Any, value: Any) -> str | None:
     if not low <= value <= high:
         return f"{value!r} is outside the declared range [{low}, {high}]; widen the range or fix it"
     return None
+
+
+_VALUE_COMPARISON = re.compile(r"expected (\S+)(?: \(mod 2π\))?, got (\S+)")
+
+
+def _restates_values(message: str) -> bool:
+    """The mismatch message only compares two values the feedback already shows ("expected 1.5,
+    got 2"), not what kind of value came back ("expected a number, got None (did you forget to
+    return?)", "expected an array of shape 2×2, got a scalar") nor where ("entry [1]: …")."""
+    found = _VALUE_COMPARISON.fullmatch(message)
+    return found is not None and all(_is_value(text) for text in found.groups())
+
+
+def _is_value(text: str) -> bool:
+    if text in ("True", "False"):
+        return True
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
 
 
 def _sentence(text: str) -> str:

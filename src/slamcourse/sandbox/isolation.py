@@ -328,19 +328,26 @@ class WorkerCgroups:
 # ---------------------------------------------------------------------------------------------
 
 
+#: The packages a learner may import besides the standard library (the worker allows the same).
+SANDBOX_PACKAGES = ("numpy", "scipy")
+
+
 def _numpy_dirs() -> list[str]:
-    """numpy's package directory and its bundled libraries (``numpy.libs``), if installed."""
-    try:
-        spec = importlib.util.find_spec("numpy")
-    except (ImportError, ValueError):
-        return []
-    if spec is None or spec.origin is None:
-        return []
-    package = os.path.dirname(os.path.abspath(spec.origin))
-    dirs = [package]
-    libs = package + ".libs"
-    if os.path.isdir(libs):
-        dirs.append(libs)
+    """The package directories of :data:`SANDBOX_PACKAGES` and their bundled libraries
+    (``numpy.libs``, ``scipy.libs``), where installed."""
+    dirs: list[str] = []
+    for name in SANDBOX_PACKAGES:
+        try:
+            spec = importlib.util.find_spec(name)
+        except (ImportError, ValueError):
+            continue
+        if spec is None or spec.origin is None:
+            continue
+        package = os.path.dirname(os.path.abspath(spec.origin))
+        dirs.append(package)
+        libs = package + ".libs"
+        if os.path.isdir(libs):
+            dirs.append(libs)
     return dirs
 
 

@@ -4,6 +4,10 @@ Frames are single lines of JSON. Requests (parent → worker)::
 
     {"id": 1, "op": "load", "source": "...", "filename": "f.py", "function": "f", "params": [...]}
     {"id": 2, "op": "call", "args": [...]}
+    {"id": 3, "op": "calls", "calls": [[...], [...], ...]}   (answered by frames 3, 4, ...)
+
+A ``check: false`` member turns off the worker's comparison of the arguments before and after
+each call (``mutated`` in a reply lists the positions of the arguments a call changed).
 
 Inside ``args`` tuples, dicts and numpy arrays are tagged so that they arrive as such:
 ``{"$tuple": [...]}``, ``{"$dict": [[key, value], ...]}`` and
@@ -22,6 +26,7 @@ import json
 import math
 import re
 import sys
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -81,7 +86,18 @@ def encode_request(frame: dict[str, Any]) -> bytes:
     """One request line. ``args`` (if present) is tagged with :func:`encode_arg`."""
     if "args" in frame:
         frame = {**frame, "args": [encode_arg(a, 0) for a in frame["args"]]}
+    if "calls" in frame:
+        frame = {**frame, "calls": [[encode_arg(a, 0) for a in args] for args in frame["calls"]]}
     return (json.dumps(frame, allow_nan=True, separators=(",", ":")) + "\n").encode()
+
+
+def encode_calls(calls: Sequence[Sequence[Any]]) -> bytes:
+    """The body of a ``calls`` request without its id (``"op":"calls","calls":[...]}`` and the
+    line end): :meth:`Worker.call_many` prefixes the id, so a body can be encoded once and sent
+    to many workers."""
+    args = [[encode_arg(a, 0) for a in one] for one in calls]
+    body = json.dumps({"op": "calls", "calls": args}, allow_nan=True, separators=(",", ":"))
+    return (body[1:] + "\n").encode()
 
 
 def encode_arg(value: Any, depth: int = 0) -> Any:

@@ -83,14 +83,17 @@ def _contain(cfg: dict[str, str]) -> tuple[int, list[str]]:
     return joined, refused
 
 
-# Step 1 runs before anything else is imported.
+# Step 1 runs before anything else is imported. A zygote contains each child it forks
+# instead (see ``_zygote``): its own code is the worker's, never a learner's.
 _CFG = _parse_argv(sys.argv[1:])
-_JOINED, _REFUSED = _contain(_CFG)
+_ZYGOTE = "zygote" in _CFG
+_JOINED, _REFUSED = (0, []) if _ZYGOTE else _contain(_CFG)
 
 import builtins  # noqa: E402
 import contextlib  # noqa: E402
 import io  # noqa: E402
 import json  # noqa: E402
+import time  # noqa: E402
 import types  # noqa: E402
 from typing import Any  # noqa: E402
 
@@ -154,15 +157,19 @@ class _MutedStream(io.TextIOBase):
         self._real = real
         self._left = budget
         self.dropped = 0
+        self.written = 0  # characters the learner wrote, kept or not
+        self.passed = 0  # bytes passed on to the real stream
 
     def write(self, text: str) -> int:
         if not _isinstance(text, str):  # as io.TextIOWrapper.write
             raise TypeError(f"write() argument must be str, not {_type_name(type(text))}")
         size = _len(text)
+        self.written += size
         if self._left > 0:
             part = text[: self._left]
             self._left -= _len(part)
             self._real.write(part)
+            self.passed += _len(part.encode(self._real.encoding, self._real.errors))
             self.dropped += size - _len(part)
         else:
             self.dropped += size
@@ -280,6 +287,7 @@ class Session:
         _flush_learner_output()
         _restore_builtins()
         frame["dropped"] = _STDOUT.dropped + _STDERR.dropped
+        frame["out"], frame["err"] = _STDOUT.passed, _STDERR.passed
         data = (_ENCODER.encode(frame) + "\n").encode()
         if _len(data) > self.frame_limit:
             oversize = {"id": frame.get("id"), "status": "oversize", "size": _len(data)}
@@ -362,20 +370,90 @@ class Session:
         self.function = function
         return {"status": "ok"}
 
-    def call(self, req: dict[str, Any]) -> dict[str, Any]:
-        args = req["args"]
+    def call(self, args: list[Any], check: bool) -> dict[str, Any]:
+        """Call the function once. With ``check``, the arguments are copied first and compared
+        afterwards: ``mutated`` lists the positions of those the call changed in place."""
+        pristine = _copy(args) if check else None
         try:
             result = self.function(*args)
         except (SystemExit, KeyboardInterrupt):
             raise
         except BaseException as exc:
             _restore_builtins()
-            return {"status": "raised", **self.describe(exc)}
-        _restore_builtins()
-        try:
-            return {"status": "ok", "value": encode(result)}
-        except (_Oversize, RecursionError, MemoryError):
-            return {"status": "oversize", "size": None}
+            reply = {"status": "raised", **self.describe(exc)}
+        else:
+            _restore_builtins()
+            try:
+                reply = {"status": "ok", "value": encode(result)}
+            except (_Oversize, RecursionError, MemoryError):
+                reply = {"status": "oversize", "size": None}
+        if pristine is not None:
+            changed = [i for i in range(_len(pristine)) if not _unchanged(pristine[i], args[i])]
+            if changed:
+                reply["mutated"] = changed
+        return reply
+
+    def call_many(self, req: dict[str, Any]) -> None:
+        """Answer every call of ``req["calls"]`` with a frame of its own (ids ``req["id"]``,
+        ``req["id"] + 1``, ...), each sent as soon as its call returns. A call that alone
+        printed more than the output budget (``out=``) floods: its frame carries ``stop`` and
+        the batch ends there, so the flood is not repeated on every input."""
+        check = req.get("check") is not False
+        first = req.get("id")
+        for index, args in enumerate(req["calls"]):
+            before = _STDOUT.written + _STDERR.written
+            reply = self.call(args, check)
+            reply["id"] = first + index if type(first) is int else None
+            flooded = _STDOUT.written + _STDERR.written - before > _BUDGET
+            if flooded:
+                reply["stop"] = True
+            self.send(reply)
+            if flooded:
+                return
+
+
+def _copy(value: Any) -> Any:
+    """A deep copy of an argument the parent sent (plain data, tuples, dicts, arrays)."""
+    t = type(value)
+    if t is list:
+        return [_copy(v) for v in value]
+    if t is tuple:
+        return tuple(_copy(v) for v in value)
+    if t is dict:
+        return {k: _copy(v) for k, v in value.items()}
+    if t is _NDARRAY:
+        return value.copy()
+    return value
+
+
+def _unchanged(before: Any, after: Any) -> bool:
+    """True if ``after`` (an argument after the call) still equals its copy ``before``:
+    same types, same shapes and dtypes, same values bit for bit (NaN equals NaN)."""
+    try:
+        t = type(before)
+        if type(after) is not t:
+            return False
+        if t is list or t is tuple:
+            return _len(before) == _len(after) and all(
+                _unchanged(b, a) for b, a in zip(before, after, strict=False)
+            )
+        if t is dict:
+            return list(before) == list(after) and all(
+                _unchanged(before[k], after[k]) for k in before
+            )
+        if t is _NDARRAY:
+            return bool(
+                before.dtype == after.dtype
+                and before.shape == after.shape
+                and before.tobytes() == after.tobytes()
+            )
+        if t is float:
+            return bool(before == after or (before != before and after != after))
+        if t in (int, str, bool) or before is None:
+            return bool(before == after)
+        return before is after
+    except BaseException:  # e.g. a list the learner made contain itself
+        return False
 
 
 def _arity_problem(function: Any, count: int) -> list[str] | None:
@@ -413,14 +491,10 @@ setattr(sys, "__stdout__", _STDOUT)  # noqa: B010 (the name is Final for type ch
 setattr(sys, "__stderr__", _STDERR)  # noqa: B010
 
 
-def main() -> int:
-    req_fd = int(_CFG["req"])
-    resp_fd = int(_CFG["resp"])
+def serve(req_fd: int, resp_fd: int) -> int:
+    """Send ``ready``, then answer requests until end of file on ``req_fd``."""
     session = Session(resp_fd, int(_CFG["frame"]))
     numpy_version = _np.__version__ if _np is not None else None
-    # Learners get the same imports at every isolation level: the standard library and numpy
-    # (already imported above), nothing else from site-packages.
-    sys.path[:] = [p for p in sys.path if "-packages" not in p]
     ready = {"status": "ready", "numpy": numpy_version, "cgroups": _JOINED, "refused": _REFUSED}
     session.send({"id": 0, **ready})
     requests = os.fdopen(req_fd, "rb", buffering=1 << 16)
@@ -436,11 +510,196 @@ def main() -> int:
             loaded = True
             reply = session.load(req)
         elif op == "call" and session.function is not None:
-            reply = session.call(req)
+            reply = session.call(req["args"], req.get("check") is not False)
+        elif op == "calls" and session.function is not None:
+            session.call_many(req)
+            continue
         else:
             reply = {"status": "bad_request"}
         reply["id"] = req.get("id")
         session.send(reply)
+
+
+def _allow_imports() -> None:
+    """Learners get the same imports at every isolation level: the standard library, numpy
+    (already imported) and scipy, nothing else from site-packages. (Under namespaces nothing
+    else exists there; without them, this is what keeps the rest out of reach.)"""
+    stdlib = tuple(os.path.abspath(p) for p in {sys.base_prefix, sys.base_exec_prefix})
+    sys.path[:] = [
+        p
+        for p in sys.path
+        if "-packages" not in p and os.path.abspath(p).startswith(stdlib)  # not a .pth's paths
+    ]
+    if _np is None:
+        return
+    site = os.path.dirname(os.path.dirname(os.path.abspath(_np.__file__)))
+    import importlib.machinery
+
+    finder = importlib.machinery.PathFinder
+
+    class _Allowed:
+        """Finds the allowed top-level packages in numpy's site directory only."""
+
+        @staticmethod
+        def find_spec(name: str, path: Any = None, target: Any = None) -> Any:
+            if path is None and name in ALLOWED_PACKAGES:
+                return finder.find_spec(name, [site])
+            return None
+
+    sys.meta_path.append(_Allowed)
+
+
+ALLOWED_PACKAGES = frozenset({"numpy", "scipy"})
+
+
+def main() -> int:
+    _allow_imports()
+    if _ZYGOTE:
+        return _zygote(int(_CFG["zygote"]))
+    return serve(int(_CFG["req"]), int(_CFG["resp"]))
+
+
+# -- zygote -------------------------------------------------------------------------------------
+#
+# ``python worker.py zygote=FD``: numpy is imported once, then every ``fork`` request on the
+# control socket FD (a SOCK_SEQPACKET Unix socket; one JSON message per request, descriptors
+# passed with SCM_RIGHTS) forks a fresh worker that contains itself exactly as a started one
+# does (cgroups joined through the descriptors sent along, every resource limit set) and then
+# serves its own pipes, which are sent back. The zygote runs no learner code itself.
+
+
+def _prctl(libc: Any, option: int, value: int) -> None:
+    with contextlib.suppress(Exception):
+        libc.prctl(option, value, 0, 0, 0)
+
+
+PR_SET_PDEATHSIG = 1
+PR_SET_DUMPABLE = 4
+
+
+def _zygote(control_fd: int) -> int:
+    import ctypes
+    import signal
+    import socket
+
+    try:
+        libc: Any = ctypes.CDLL(None, use_errno=True)
+    except OSError:
+        libc = None
+    _prctl(libc, PR_SET_DUMPABLE, 0)  # no process of the sandbox may ptrace or read it
+    sock = socket.socket(fileno=control_fd)
+    children: dict[int, int | None] = {}  # pid -> exit code once reaped
+
+    def reap() -> None:
+        for pid, code in list(children.items()):
+            if code is None:
+                with contextlib.suppress(ChildProcessError):
+                    done, status = os.waitpid(pid, os.WNOHANG)
+                    if done:
+                        children[pid] = os.waitstatus_to_exitcode(status)
+
+    def answer(reply: dict[str, Any], fds: list[int] | None = None) -> None:
+        data = json.dumps(reply).encode()
+        if fds:
+            socket.send_fds(sock, [data], fds)
+        else:
+            sock.send(data)
+
+    version = _np.__version__ if _np is not None else None
+    answer({"status": "ready", "numpy": version, "pid": os.getpid()})
+    while True:
+        try:
+            data, fds, _flags, _addr = socket.recv_fds(sock, 1 << 16, 16)
+        except OSError:
+            data, fds = b"", []
+        if not data:
+            break
+        req = json.loads(data)
+        reap()
+        op = req.get("op")
+        if op == "fork":
+            pid, theirs = _fork_worker(req, fds, control_fd, libc)
+            children[pid] = None
+            answer({"status": "forked", "pid": pid}, theirs)
+            for fd in theirs:
+                os.close(fd)
+        elif op == "kill":
+            pid = req.get("pid")
+            if type(pid) is int and pid in children and children[pid] is None:
+                for kill in (os.killpg, os.kill):
+                    with contextlib.suppress(OSError):
+                        kill(pid, signal.SIGKILL)
+            answer({"status": "killed"})
+        elif op == "wait":
+            pid = req.get("pid")
+            deadline = time.monotonic() + float(req.get("timeout", 0))
+            pause = 0.0002
+            while pid in children and children[pid] is None and time.monotonic() < deadline:
+                time.sleep(pause)
+                pause = min(pause * 2, 0.01)
+                reap()
+            answer({"status": "waited", "code": children.get(pid)})
+        else:
+            answer({"status": "bad_request"})
+    for pid, code in children.items():
+        if code is None:
+            with contextlib.suppress(OSError):
+                os.killpg(pid, signal.SIGKILL)
+            with contextlib.suppress(OSError):
+                os.kill(pid, signal.SIGKILL)
+    return 0
+
+
+def _fork_worker(
+    req: dict[str, Any], cg_fds: list[int], control_fd: int, libc: Any
+) -> tuple[int, list[int]]:
+    """Fork one worker; returns its pid and the parent's ends of its four pipes."""
+    req_r, req_w = os.pipe()
+    resp_r, resp_w = os.pipe()
+    out_r, out_w = os.pipe()
+    err_r, err_w = os.pipe()
+    pid = os.fork()
+    if pid == 0:  # the worker: never returns to the zygote's loop
+        code = 1
+        try:
+            os.setsid()
+            _prctl(libc, PR_SET_PDEATHSIG, 9)  # dies with the zygote
+            os.dup2(out_w, 1)
+            os.dup2(err_w, 2)
+            keep = {0, 1, 2, req_r, resp_w, *cg_fds}
+            try:  # every other descriptor of the zygote goes (the control socket first)
+                open_fds = {int(fd) for fd in os.listdir("/proc/self/fd")}
+            except OSError:
+                open_fds = set(range(3, 1024))
+            for fd in sorted(open_fds | {control_fd, req_w, resp_r, out_r, err_r}):
+                if fd not in keep:
+                    with contextlib.suppress(OSError):
+                        os.close(fd)
+            cfg = req.get("cfg", {})
+            _CFG.update({k: str(v) for k, v in cfg.items()})
+            _CFG["cg"] = ",".join(str(fd) for fd in cg_fds)
+            _CFG.update({"req": str(req_r), "resp": str(resp_w)})
+            _CFG.pop("zygote", None)
+            sys.argv[1:] = [f"{k}={v}" for k, v in _CFG.items()]  # as a started worker's
+            global _JOINED, _REFUSED
+            _JOINED, _REFUSED = _contain(_CFG)
+            global _BUDGET
+            _BUDGET = int(_CFG.get("out") or 1 << 20)
+            for stream in (_STDOUT, _STDERR):
+                stream._left = _BUDGET
+                stream.dropped = stream.written = 0
+            code = serve(req_r, resp_w)
+        except SystemExit as exc:
+            code = exc.code if type(exc.code) is int else 1
+        except BaseException:
+            code = 1
+        finally:
+            with contextlib.suppress(BaseException):
+                _flush_learner_output()
+            os._exit(code)
+    for fd in (req_r, resp_w, out_w, err_w, *cg_fds):
+        os.close(fd)
+    return pid, [req_w, resp_r, out_r, err_r]
 
 
 if __name__ == "__main__":

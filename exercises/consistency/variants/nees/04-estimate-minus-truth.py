@@ -6,6 +6,8 @@ def nees(x_true, x_hat, P):
     n = len(x_true)
     e = [float(x_hat[i]) - float(x_true[i]) for i in range(n)]
     e[2] = math.atan2(math.sin(e[2]), math.cos(e[2]))
+    if e[2] == math.pi:  # x̂ − x is minus the error, so it lies in [-pi, pi)
+        e[2] = -math.pi
     a = [[float(v) for v in P[i]] + [e[i]] for i in range(n)]
     for c in range(n):
         piv = max(range(c, n), key=lambda r: abs(a[r][c]))

@@ -1,0 +1,425 @@
+"""Test sets: the inputs a code exercise is graded on, with the reference's outputs, built once.
+
+Nothing in a test set depends on the learner, so a batch builds each exercise's set once and
+grades every submission against it (:class:`SharedTests`); a learner's own check builds the
+visible part for itself. A test set is, in this order:
+
+1. the exercise's explicit edge ``examples``;
+2. the **boundary inputs** derived from the declared argument types
+   (:mod:`slamcourse.grading.domains`: ±π and the floats next to it, whole numbers as ``int``,
+   tuples and arrays where the prompt says sequence, the domain's extremes, g2o texts with CRLF
+   or no final newline, …), applied to the examples and the first drawn inputs, and kept only
+   where the exercise's reference is defined (it returns finite values without raising) and
+   the exercise's ``valid`` function, if any, accepts them;
+3. the **drawn** inputs: the course's shipped recording, else the learner's cache, else a
+   Hypothesis draw with the exercise's fixed seed (the same sequence a passing run draws);
+4. in grading mode, the **hidden** inputs: Hypothesis draws with seeds derived from the
+   instructor's secret, which no learner's check ever meets.
+
+An input that occurs twice (same values *and* types: ``1`` and ``1.0``, a tuple and a list
+differ) is kept once, at its first place, so a strategy that always draws the same data set
+(``intel/whole-graph``) costs one call. Each case carries the reference's output, computed
+here once: grading a submission is then one pass of calls and comparisons
+(:func:`run_cases`).
+"""
+
+from __future__ import annotations
+
+import copy
+import hashlib
+import json
+import math
+import pickle
+import threading
+from collections.abc import Callable, Iterable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from slamcourse.course.model import ExerciseSpec, Tolerance
+from slamcourse.errors import GraderError
+from slamcourse.grading.properties import MAX_RECORDED, Failure, Outcome, exercise_seed
+from slamcourse.grading.returns import compare, to_plain
+from slamcourse.sandbox import CallResult
+
+BOUNDARY_BASES = 12
+"""Drawn inputs (after the examples) the boundary transforms may start from."""
+CHUNK = 32
+"""Inputs sent to the sandbox in one request."""
+MAX_AGREED = 60
+"""Inputs the learner got right that a misconception must get right too (examples and
+boundaries first)."""
+FATAL = ("timeout", "crashed", "protocol_error")
+
+
+@dataclass(frozen=True)
+class Case:
+    """One input, the reference's output on it (plain data), and where it comes from:
+    ``example``, ``boundary: <class>``, ``drawn`` or ``hidden <run>``."""
+
+    kwargs: dict[str, Any]
+    expected: Any
+    origin: str
+
+    @property
+    def hidden(self) -> bool:
+        return self.origin.startswith("hidden")
+
+    @property
+    def fixed(self) -> bool:
+        """An explicit example or a boundary input (not drawn at random)."""
+        return self.origin == "example" or self.origin.startswith("boundary")
+
+
+@dataclass
+class TestSet:
+    """The cases of one exercise, visible ones first; ``recorded``: the drawn part came from a
+    recording (no Hypothesis ran)."""
+
+    exercise: str
+    seed: int
+    cases: list[Case]
+    recorded: bool = False
+    boundary_classes: tuple[str, ...] = ()
+
+    def encoded_chunk(self, start: int, signature: tuple[str, ...], calls: list[Any]) -> bytes:
+        """The sandbox request body of the chunk of cases from ``start`` (see
+        :func:`~slamcourse.sandbox.protocol.encode_calls`), encoded once per process."""
+        from slamcourse.sandbox.protocol import encode_calls
+
+        cache: dict[tuple[int, tuple[str, ...]], bytes] = self.__dict__.setdefault("_bodies", {})
+        key = (start, signature)
+        if key not in cache:
+            cache[key] = encode_calls(calls)
+        return cache[key]
+
+    @property
+    def visible(self) -> list[Case]:
+        return [c for c in self.cases if not c.hidden]
+
+    @property
+    def hidden_runs(self) -> int:
+        return len({c.origin for c in self.cases if c.hidden})
+
+
+def input_key(kwargs: dict[str, Any]) -> str:
+    """A key equal for two inputs exactly when their values and types are equal."""
+    from slamcourse.grading.replay import encode
+
+    return json.dumps(encode(kwargs), sort_keys=True, allow_nan=True)
+
+
+def draw(spec: ExerciseSpec, seed: int, *, examples: Sequence[dict[str, Any]] = ()) -> list[Any]:
+    """The inputs a passing property run with ``seed`` draws (``examples`` first), without
+    calling anything: the same sequence a learner's passing check meets."""
+    from hypothesis import HealthCheck, Phase, Verbosity, example, given, settings
+    from hypothesis import seed as fixed_seed
+
+    from slamcourse.grading.properties import hypothesis_run
+    from slamcourse.kinds import get_kind
+
+    drawn: list[dict[str, Any]] = []
+
+    def body(kwargs: dict[str, Any]) -> None:
+        drawn.append(copy.deepcopy(kwargs))
+
+    test = given(get_kind("code").strategy(spec))(body)  # type: ignore[attr-defined]
+    for ex in reversed(examples):
+        test = example(ex)(test)
+    test = settings(
+        max_examples=spec.options.max_examples,
+        database=None,
+        deadline=None,
+        derandomize=False,
+        verbosity=Verbosity.quiet,
+        suppress_health_check=list(HealthCheck),
+        phases=(Phase.explicit, Phase.generate),
+    )(test)
+    test = fixed_seed(seed)(test)
+    try:
+        with hypothesis_run():  # the same inputs from the same seed in every process
+            test()
+    except Exception as exc:  # e.g. 'assume' rejects everything
+        raise GraderError(f"the property test could not run: {type(exc).__name__}: {exc}") from exc
+    return drawn
+
+
+def _finite(value: Any) -> bool:
+    value = to_plain(value)
+    if isinstance(value, list):
+        return all(_finite(v) for v in value)
+    if isinstance(value, float):
+        return math.isfinite(value)
+    return True
+
+
+def _drawn_inputs(spec: ExerciseSpec, seed: int, use_recording: bool) -> tuple[list[Any], bool]:
+    """The visible drawn inputs and whether they came from a recording."""
+    from slamcourse.grading import replay
+
+    opts = spec.options
+    cache_key = None
+    if use_recording:
+        shipped = replay.load_shipped(spec, seed)
+        if shipped is not None:
+            return shipped, True
+        cache_key = replay.recording_key(spec, seed, opts.max_examples)
+        cached = replay.load(cache_key)
+        if cached:
+            return cached, True
+    inputs = draw(spec, seed, examples=opts.examples)
+    if cache_key is not None:
+        replay.save(cache_key, inputs)
+    return inputs, False
+
+
+def build(
+    spec: ExerciseSpec,
+    *,
+    hidden_seeds: Sequence[int] = (),
+    use_recording: bool = True,
+) -> TestSet:
+    """The test set of a code exercise (see the module docstring)."""
+    from slamcourse.course import reference
+
+    opts = spec.options
+    ref = reference.function(spec, spec.reference or "", spec.reference_line)
+    valid = (
+        reference.function(spec, opts.valid, opts.valid_line)
+        if getattr(opts, "valid", None)
+        else None
+    )
+    assumed = None
+    if getattr(opts, "assume", None) and getattr(opts, "arguments", None):
+        from slamcourse.grading.domains import assumptions
+
+        assumed = assumptions(opts.arguments, opts.assume)
+    seed = exercise_seed(spec.id)
+    drawn, recorded = _drawn_inputs(spec, seed, use_recording)
+    cases: list[Case] = []
+    seen: set[str] = set()
+
+    def add(kwargs: dict[str, Any], origin: str, *, derived: bool = False) -> bool:
+        """Add one input; True if the test set holds it afterwards (added now or before)."""
+        key = input_key(kwargs)
+        if key in seen:
+            return True
+        try:
+            if derived and valid is not None and not valid(**copy.deepcopy(kwargs)):
+                return False
+            if derived and assumed is not None and not assumed(**copy.deepcopy(kwargs)):
+                return False
+            want = to_plain(ref(**copy.deepcopy(kwargs)))
+        except Exception as exc:
+            if derived:  # outside the reference's domain: not an input the prompt allows
+                return False
+            raise GraderError(
+                f"the reference failed on {kwargs}: {type(exc).__name__}: {exc}; "
+                "the exercise's 'arguments' must exclude undefined inputs"
+            ) from exc
+        if derived and not _finite(want):
+            return False
+        seen.add(key)
+        cases.append(Case(kwargs, want, origin))
+        return True
+
+    for ex in opts.examples:
+        add(copy.deepcopy(ex), "example")
+    classes: tuple[str, ...] = ()
+    types = getattr(opts, "types", ())
+    if types:
+        from slamcourse.grading.domains import boundary_inputs
+
+        bases = [*opts.examples, *drawn[: BOUNDARY_BASES + len(opts.examples)]]
+        found = set()
+        for derived in boundary_inputs(types, bases):
+            if add(derived.kwargs, f"boundary: {derived.label}", derived=True):
+                found.add(derived.label)  # (an input already there reaches the class too)
+        classes = tuple(sorted(found))
+    for kwargs in drawn:
+        add(kwargs, "drawn")
+    for run, hidden in enumerate(hidden_seeds):
+        for kwargs in draw(spec, hidden):
+            add(kwargs, f"hidden {run + 1}")
+    return TestSet(spec.id, seed, cases, recorded, classes)
+
+
+# ------------------------------------------------------------------------------ grading
+
+
+CallMany = Callable[[Sequence[Sequence[Any]]], list[CallResult]]
+
+
+class Calls(list[list[Any]]):
+    """The argument lists of one chunk; ``encoded``: the same, already encoded for the
+    sandbox (a :class:`~slamcourse.sandbox.Worker` sends it as is; other callees ignore it)."""
+
+    encoded: bytes | None = None
+
+
+def run_cases(
+    tests: TestSet,
+    call_many: CallMany,
+    *,
+    signature: Sequence[str],
+    returns: Any,
+    tolerance: Tolerance,
+    mutable: Iterable[str] = (),
+    cases: Sequence[Case] | None = None,
+) -> tuple[Outcome, list[Case | None]]:
+    """Call the learner's function on every case (``cases``: a subset) and compare.
+
+    Returns the outcome (``failure``: the first failing case in order, unshrunk; ``failures``:
+    up to :data:`~slamcourse.grading.properties.MAX_RECORDED` of them; ``agreed``: fixed cases
+    the learner got right) and, parallel to ``outcome.failures``, the case of each failure.
+    Stops at the first fatal result (timeout, crash, broken channel), after output was cut
+    (the function flooded its output: ``outcome.flooded``), and once enough failures are seen.
+    An argument the function changed in place (unless its name is in ``mutable``) is a
+    failure of its own kind, ``mutated``.
+    """
+    todo = list(tests.cases if cases is None else cases)
+    outcome = Outcome(seed=tests.seed, replayed=tests.recorded)
+    failed_cases: list[Case | None] = []
+    allowed = set(mutable)
+    whole = cases is None
+    for start in range(0, len(todo), CHUNK):
+        chunk = todo[start : start + CHUNK]
+        calls = Calls([case.kwargs[name] for name in signature] for case in chunk)
+        if whole:  # the same chunks for every learner: encoded for the sandbox once
+            calls.encoded = tests.encoded_chunk(start, tuple(signature), calls)
+        results = call_many(calls)
+        stop = False
+        for case, result in zip(chunk, results, strict=False):
+            outcome.examples += 1
+            outcome.call_seconds += result.seconds or 0.0
+            failure = _judge(case, result, signature, returns, tolerance, allowed)
+            if result.output_cut:
+                outcome.output_cut = True
+            if failure is None:
+                if case.fixed and len(outcome.agreed) < MAX_AGREED:
+                    outcome.agreed.append((case.kwargs, case.expected))
+            else:
+                if outcome.failure is None:
+                    outcome.failure = failure
+                    outcome.failure_case = case
+                if len(outcome.failures) < MAX_RECORDED:
+                    outcome.failures.append(failure)
+                    failed_cases.append(case)
+                if case.hidden:
+                    outcome.hidden_failed.add(case.origin)
+            if result.status in FATAL:
+                stop = True
+                break
+            if result.flooded:
+                outcome.flooded = outcome.examples
+                stop = True
+                break
+        if stop or len(results) < len(chunk):
+            break
+        if len(outcome.failures) >= MAX_RECORDED:
+            break
+    return outcome, failed_cases
+
+
+def _judge(
+    case: Case,
+    result: CallResult,
+    signature: Sequence[str],
+    returns: Any,
+    tolerance: Tolerance,
+    allowed: set[str],
+) -> Failure | None:
+    kwargs, want = case.kwargs, case.expected
+    if result.status in FATAL:
+        return Failure(
+            kwargs,
+            want,
+            None,
+            result.error,
+            result.status,
+            stdout=result.stdout,
+            origin=case.origin,
+        )
+    if result.status == "raised":
+        return Failure(
+            kwargs,
+            want,
+            None,
+            result.error,
+            "raised",
+            result.frames,
+            result.stdout,
+            origin=case.origin,
+        )
+    mismatch = compare(returns, result.value, want, tolerance, plain=True)
+    if mismatch is not None:
+        return Failure(
+            kwargs,
+            want,
+            result.value,
+            mismatch.message,
+            "mismatch",
+            stdout=result.stdout,
+            origin=case.origin,
+        )
+    changed = [signature[i] for i in getattr(result, "mutated", ()) if 0 <= i < len(signature)]
+    changed = [name for name in changed if name not in allowed]
+    if changed:
+        names = ", ".join(f"`{n}`" for n in changed)
+        return Failure(
+            kwargs,
+            want,
+            result.value,
+            f"the function changed its argument{'s' if len(changed) > 1 else ''} {names} in "
+            "place; the prompt asks for a new value: work on a copy "
+            "(e.g. `list(x)` or `np.array(x, dtype=float)`) and leave the arguments as given",
+            "mutated",
+            stdout=result.stdout,
+            origin=case.origin,
+        )
+    return None
+
+
+# ------------------------------------------------------------------------------ a batch
+
+
+def hidden_seed(secret: str, exercise_id: str, run: int) -> int:
+    """The Hypothesis seed of hidden run ``run`` of an exercise in a batch: 32 bits of
+    HMAC-SHA256(secret, id, run), never the exercise's public seed. Without the secret, no
+    learner can predict it."""
+    import hmac
+
+    message = f"{exercise_id}\0{run}".encode()
+    digest = hmac.new(secret.encode(), message, hashlib.sha256).digest()
+    seed = int.from_bytes(digest[:4], "little")
+    return seed if seed != exercise_seed(exercise_id) else seed ^ 1
+
+
+@dataclass
+class SharedTests:
+    """The test sets of one batch: each exercise's built once (inputs, hidden inputs from the
+    instructor's ``secret``, reference outputs) and used for every submission. Thread-safe;
+    :meth:`save` / :meth:`load` hand them to grading processes (a pickle of plain data, written
+    and read only by the grader itself)."""
+
+    secret: str = ""
+    runs: int = 1
+    sets: dict[str, TestSet] = field(default_factory=dict)
+    _lock: threading.Lock = field(default_factory=threading.Lock, repr=False)
+
+    def get(self, spec: ExerciseSpec) -> TestSet:
+        with self._lock:
+            found = self.sets.get(spec.id)
+            if found is None:
+                seeds = [hidden_seed(self.secret, spec.id, r) for r in range(self.runs)]
+                found = build(spec, hidden_seeds=seeds)
+                self.sets[spec.id] = found
+            return found
+
+    def save(self, path: Path) -> None:
+        path.write_bytes(pickle.dumps((self.secret, self.runs, self.sets)))
+
+    @classmethod
+    def load(cls, path: Path) -> SharedTests:
+        secret, runs, sets = pickle.loads(path.read_bytes())  # our own file, never a learner's
+        return cls(secret, runs, sets)

@@ -1,0 +1,181 @@
+"""Batched calls, the argument check and the zygote: what the batch grader's sandbox adds.
+
+The attacks of ``test_attacks.py`` run against forked workers too (the ``how`` fixture); these
+tests cover what only a zygote or a batch of calls can get wrong.
+"""
+
+from __future__ import annotations
+
+import textwrap
+import time
+
+import pytest
+
+from slamcourse.grading.pool import WorkerPool
+from slamcourse.sandbox import Limits, Zygote
+from tests.sandbox.conftest import MakeWorker, require_level
+
+
+@pytest.fixture(params=["namespaces", "rlimits"])
+def zygote(request: pytest.FixtureRequest) -> Zygote:
+    require_level(request.param)
+    z = Zygote.spawn(force=request.param)
+    request.addfinalizer(z.close)
+    return z
+
+
+def load(z: Zygote, source: str, limits: Limits | None = None) -> object:
+    worker = z.worker(limits)
+    loaded = worker.load(textwrap.dedent(source), "f.py", "f", None)
+    assert loaded.ok, loaded
+    return worker
+
+
+def test_call_many_answers_each_call_with_its_own_result(make_worker: MakeWorker) -> None:
+    worker, loaded = make_worker(
+        """
+        def f(x):
+            print(x)
+            if x == 2:
+                raise ValueError("two")
+            return (x, x * 1.5)
+        """
+    )
+    assert loaded.ok
+    results = worker.call_many([[1], [2], [3]])
+    assert [r.status for r in results] == ["ok", "raised", "ok"]
+    assert results[0].value == [1, 1.5] and results[2].value == [3, 4.5]
+    assert results[1].error == "ValueError: two"
+    assert [r.stdout for r in results] == ["1\n", "2\n", "3\n"]  # each call's own output
+    assert worker.call([4]).value == [4, 6.0]  # single calls still work afterwards
+
+
+def test_a_call_that_changes_an_argument_is_reported(make_worker: MakeWorker) -> None:
+    worker, loaded = make_worker(
+        """
+        import numpy as np
+        def f(a, b, c):
+            if isinstance(a, list):
+                a.append(0)
+            np.asarray(b)[...] *= 2        # an ndarray changed through a view
+            return len(c)
+        """
+    )
+    assert loaded.ok
+    import numpy as np
+
+    results = worker.call_many(
+        [
+            [[1.0], np.array([1.0, 2.0]), (1, 2)],
+            [(1.0,), np.array([0.0]), "ab"],  # 0 * 2 == 0: unchanged
+            [(1.0,), [float("nan")], [float("nan")]],  # NaN stays NaN: unchanged
+        ]
+    )
+    assert [r.mutated for r in results] == [(0, 1), (), ()]
+    assert worker.call([[1.0], [1.0], ()], check=False).mutated == ()
+
+
+def test_a_flooding_call_stops_the_batch(make_worker: MakeWorker) -> None:
+    worker, loaded = make_worker(
+        """
+        def f(n):
+            print("x" * n)
+            return n
+        """
+    )
+    assert loaded.ok
+    start = time.monotonic()
+    results = worker.call_many([[10], [3_000_000]] + [[3_000_000]] * 50)
+    assert time.monotonic() - start < 5.0
+    assert [r.value for r in results] == [10, 3_000_000]  # stopped after the first flood
+    assert results[-1].flooded and not results[0].flooded and results[-1].output_cut
+
+
+def test_scipy_but_nothing_else_from_site_packages(make_worker: MakeWorker) -> None:
+    worker, loaded = make_worker(
+        """
+        import scipy.sparse, scipy.sparse.linalg
+        def f(name):
+            try:
+                __import__(name)
+            except ImportError as exc:
+                return type(exc).__name__
+            return "imported"
+        """
+    )
+    assert loaded.ok, loaded
+    names = ["numpy", "scipy.linalg", "json", "hypothesis", "slamcourse", "pytest", "yaml"]
+    values = [r.value for r in worker.call_many([[n] for n in names])]
+    assert values == ["imported"] * 3 + ["ModuleNotFoundError"] * 4
+
+
+def test_forked_workers_are_fresh_processes(zygote: Zygote) -> None:
+    source = """
+        import os
+        STATE = []
+        def f():
+            STATE.append(1)
+            return [os.getpid(), len(STATE)]
+        """
+    first = load(zygote, source)
+    second = load(zygote, source)
+    a, b = first.call([]).value, second.call([]).value  # type: ignore[attr-defined]
+    assert a[1] == b[1] == 1 and a[0] != b[0]  # no module state shared, two processes
+    first.close()  # type: ignore[attr-defined]
+    second.close()  # type: ignore[attr-defined]
+
+
+def test_a_worker_cannot_read_its_sibling(zygote: Zygote) -> None:
+    if zygote.isolation.level != "namespaces":
+        pytest.skip("the rlimits fallback does not claim this (its workers run as the grader)")
+    sibling = load(zygote, "import os\ndef f():\n    return os.getpid()\n")
+    pid = sibling.call([]).value  # type: ignore[attr-defined]
+    spy = load(
+        zygote,
+        """
+        import os
+        def f(pid):
+            out = []
+            for path in (f"/proc/{pid}/mem", f"/proc/{pid}/environ", f"/proc/{os.getppid()}/mem"):
+                try:
+                    with open(path, "rb") as handle:
+                        handle.read(16)
+                    out.append("read")
+                except OSError as exc:
+                    out.append(type(exc).__name__)
+            return out
+        """,
+    )
+    result = spy.call([pid])  # type: ignore[attr-defined]
+    assert result.ok and "read" not in result.value, result  # not dumpable: no access
+
+
+def test_limits_are_per_worker(zygote: Zygote) -> None:
+    worker = load(
+        zygote,
+        "import time\ndef f(n):\n    time.sleep(n)\n    return n\n",
+        Limits(call_seconds=0.5),
+    )
+    results = worker.call_many([[0], [2], [0]])  # type: ignore[attr-defined]
+    assert [r.status for r in results] == ["ok", "timeout"]
+    other = load(zygote, "def f():\n    return 7\n")
+    assert other.call([]).value == 7  # type: ignore[attr-defined]
+
+
+def test_the_pool_replaces_a_zygote_the_learner_killed() -> None:
+    pool = WorkerPool(fork=True)
+    try:
+        worker = pool.take(Limits())
+        loaded = worker.load(
+            "import os, signal\ndef f():\n    os.kill(os.getppid(), signal.SIGKILL)\n", "f.py", "f"
+        )
+        assert loaded.ok
+        worker.call([])
+        worker.close()
+        time.sleep(0.2)
+        again = pool.take(Limits())
+        assert again.load("def f():\n    return 1\n", "f.py", "f").ok
+        assert again.call([]).value == 1
+        again.close()
+    finally:
+        pool.close()
