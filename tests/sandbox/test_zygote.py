@@ -179,3 +179,35 @@ def test_the_pool_replaces_a_zygote_the_learner_killed() -> None:
         again.close()
     finally:
         pool.close()
+
+
+def test_a_worker_forked_ahead_and_killed_meanwhile_is_replaced() -> None:
+    """The batch pool forks the next exercise's worker while one runs; code that kills it
+    (same learner, same zygote) must not make the next exercise fail."""
+    pool = WorkerPool(fork=True)
+    try:
+        first = pool.take(Limits())
+        assert first.load(
+            "import os, signal\n"
+            "def f():\n"
+            "    killed = 0\n"
+            "    for pid in range(2, 200):\n"
+            "        if pid != os.getpid() and pid != os.getppid():\n"
+            "            try:\n"
+            "                os.kill(pid, signal.SIGKILL)\n"
+            "                killed += 1\n"
+            "            except OSError:\n"
+            "                pass\n"
+            "    return killed\n",
+            "f.py",
+            "f",
+        ).ok
+        time.sleep(0.3)  # let the next worker be forked ahead
+        assert first.call([]).value >= 1  # the worker forked ahead, at least
+        first.close()
+        second = pool.take(Limits())
+        assert second.load("def f():\n    return 2\n", "f.py", "f").ok
+        assert second.call([]).value == 2
+        second.close()
+    finally:
+        pool.close()

@@ -21,19 +21,11 @@ def edge_error(xi, xj, z):
 
 
 def edge_jacobians(xi, xj, z):
-    ci, si = math.cos(xi[2]), math.sin(xi[2])
-    cz, sz = math.cos(z[2]), math.sin(z[2])
-    rz_t = np.array([[cz, sz], [-sz, cz]])
-    ri_t = np.array([[ci, si], [-si, ci]])
-    d_ri_t = np.array([[-si, ci], [-ci, -si]])
-    d = np.array([xj[0] - xi[0], xj[1] - xi[1]])
-    A = np.zeros((3, 3))
-    B = np.zeros((3, 3))
-    A[:2, :2] = -rz_t @ ri_t
-    A[:2, 2] = rz_t @ d_ri_t @ d
-    A[2, 2] = -1.0
-    B[:2, :2] = rz_t @ ri_t
-    B[2, 2] = 1.0
+    # e_xy = Rz' Ri' (t_j - t_i) - Rz' t_z and Rz' Ri' is the rotation by -(theta_i + theta_z)
+    c, s = math.cos(xi[2] + z[2]), math.sin(xi[2] + z[2])
+    dx, dy = xj[0] - xi[0], xj[1] - xi[1]
+    A = np.array([[-c, -s, -s * dx + c * dy], [s, -c, -c * dx - s * dy], [0.0, 0.0, -1.0]])
+    B = np.array([[c, s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0]])
     return A, B
 
 
@@ -51,24 +43,22 @@ def gauss_newton(poses, edges, iterations):
     with scipy's sparse LU, which orders the columns (COLAMD) to keep the fill small."""
     x = np.array(poses, dtype=float)
     n = len(x)
-    block = np.arange(3)
-    rr = np.repeat(block, 3)  # row offsets of a 3x3 block, row by row
-    cc = np.tile(block, 3)  # column offsets
+    index = [np.array([3 * i, 3 * i + 1, 3 * i + 2, 3 * j, 3 * j + 1, 3 * j + 2])
+             for i, j, _z, _O in edges]  # the rows and columns of each edge's two poses
+    rows = np.concatenate([np.repeat(idx, 6) for idx in index])  # each 6 x 6 block J'OJ
+    cols = np.concatenate([np.tile(idx, 6) for idx in index])  # ... row by row
+    keep = (rows >= 3) & (cols >= 3)  # pose 0 is held fixed: drop its rows and columns
     for _ in range(iterations):
-        rows, cols, vals = [], [], []
+        vals = []
         b = np.zeros(3 * n)
-        for i, j, z, O in edges:
+        for (i, j, z, O), idx in zip(edges, index):
             e = edge_error(x[i], x[j], z)
             A, B = edge_jacobians(x[i], x[j], z)
-            for (p, P), (q, Q) in (((i, A), (i, A)), ((i, A), (j, B)),
-                                   ((j, B), (i, A)), ((j, B), (j, B))):
-                rows.append(3 * p + rr)
-                cols.append(3 * q + cc)
-                vals.append((P.T @ O @ Q).ravel())
-            b[3 * i:3 * i + 3] += A.T @ O @ e
-            b[3 * j:3 * j + 3] += B.T @ O @ e
-        rows, cols, vals = np.concatenate(rows), np.concatenate(cols), np.concatenate(vals)
-        keep = (rows >= 3) & (cols >= 3)  # pose 0 is held fixed: drop its rows and columns
+            J = np.hstack([A, B])  # the error's Jacobian with respect to (x_i, x_j): 3 x 6
+            JtO = J.T @ O
+            vals.append((JtO @ J).ravel())
+            b[idx] += JtO @ e
+        vals = np.concatenate(vals)
         H = coo_matrix((vals[keep], (rows[keep] - 3, cols[keep] - 3)),
                        shape=(3 * n - 3, 3 * n - 3)).tocsc()  # duplicates are summed
         dx = spsolve(H, -b[3:])

@@ -19,39 +19,29 @@ def edge_error(xi, xj, z):
 
 
 def edge_jacobians(xi, xj, z):
-    ci, si = math.cos(xi[2]), math.sin(xi[2])
-    cz, sz = math.cos(z[2]), math.sin(z[2])
-    rz_t = np.array([[cz, sz], [-sz, cz]])
-    ri_t = np.array([[ci, si], [-si, ci]])
-    d_ri_t = np.array([[-si, ci], [-ci, -si]])
-    d = np.array([xj[0] - xi[0], xj[1] - xi[1]])
-    A = np.zeros((3, 3))
-    B = np.zeros((3, 3))
-    A[:2, :2] = -rz_t @ ri_t
-    A[:2, 2] = rz_t @ d_ri_t @ d
-    A[2, 2] = -1.0
-    B[:2, :2] = rz_t @ ri_t
-    B[2, 2] = 1.0
+    # e_xy = Rz' Ri' (t_j - t_i) - Rz' t_z and Rz' Ri' is the rotation by -(theta_i + theta_z)
+    c, s = math.cos(xi[2] + z[2]), math.sin(xi[2] + z[2])
+    dx, dy = xj[0] - xi[0], xj[1] - xi[1]
+    A = np.array([[-c, -s, -s * dx + c * dy], [s, -c, -c * dx - s * dy], [0.0, 0.0, -1.0]])
+    B = np.array([[c, s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0]])
     return A, B
 
 
 def gauss_newton(poses, edges, iterations):
     x = np.array(poses, dtype=float)
     n = len(x)
+    omegas = [np.array(omega, dtype=float) for *_, omega in edges]
     for _ in range(iterations):
         H = np.zeros((3 * n, 3 * n))
         b = np.zeros(3 * n)
-        for i, j, z, omega in edges:
-            O = np.array(omega, dtype=float)
+        for (i, j, z, _omega), O in zip(edges, omegas):
             e = edge_error(x[i], x[j], z)
             A, B = edge_jacobians(x[i], x[j], z)
-            si, sj = slice(3 * i, 3 * i + 3), slice(3 * j, 3 * j + 3)
-            H[si, si] += A.T @ O @ A
-            H[si, sj] += A.T @ O @ B
-            H[sj, si] += B.T @ O @ A
-            H[sj, sj] += B.T @ O @ B
-            b[si] += A.T @ O @ e
-            b[sj] += B.T @ O @ e
+            J = np.hstack([A, B])  # the error's Jacobian with respect to (x_i, x_j): 3 x 6
+            JtO = J.T @ O
+            rows = [3 * i, 3 * i + 1, 3 * i + 2, 3 * j, 3 * j + 1, 3 * j + 2]
+            H[np.ix_(rows, rows)] += JtO @ J  # the blocks A'OA, A'OB, B'OA, B'OB at once
+            b[rows] += JtO @ e
         dx = np.linalg.solve(H[3:, 3:], -b[3:])
         x[1:] += dx.reshape(-1, 3)
         x[:, 2] = [wrap(t) for t in x[:, 2]]

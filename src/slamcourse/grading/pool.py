@@ -12,6 +12,7 @@ from __future__ import annotations
 import contextlib
 import threading
 from concurrent.futures import Future, ThreadPoolExecutor
+from typing import Any
 
 from slamcourse.errors import SandboxError
 from slamcourse.sandbox import Limits, Worker, Zygote
@@ -44,6 +45,7 @@ class WorkerPool:
         self.keep_spare = keep_spare
         self.fork = fork
         self._zygote: Future[Zygote] | None = None
+        self._forked: Future[tuple[Zygote, Any, Worker] | None] | None = None
         self._lock = threading.Lock()
         self._spare: Future[Worker] | None = None
         self._spawner: ThreadPoolExecutor | None = None
@@ -89,9 +91,7 @@ class WorkerPool:
         """A fresh worker (the spare when it is alive); raises SandboxError when none can run.
         ``limits`` other than the pool's: a worker started for them (a spare has the pool's)."""
         if self.fork:
-            with self._lock:
-                zygote = self._zygote_later()
-            return zygote.result().worker(limits)
+            return self._take_forked(limits)
         if limits is not None and limits != self.limits:
             with self._lock:
                 if self._spawner is None:
@@ -116,7 +116,47 @@ class WorkerPool:
             worker = again.result()
         return worker
 
+    def _take_forked(self, limits: Limits | None) -> Worker:
+        """A worker forked by this pool's zygote; the next one is forked at once, in the
+        background, with the same limits (exercises mostly share theirs), so that joining its
+        cgroups (which can wait for a kernel grace period of several milliseconds) and its
+        first frame overlap the exercise graded meanwhile."""
+        with self._lock:
+            pending = self._zygote_later()
+            spare, self._forked = self._forked, None
+        zygote = pending.result()
+        worker = None
+        if spare is not None:
+            found = spare.result()
+            if found is not None:
+                owner, spare_limits, candidate = found
+                if owner is zygote and spare_limits == limits and candidate.fresh:
+                    worker = candidate
+                else:
+                    candidate.close()
+        if worker is None:
+            worker = zygote.worker(limits)
+        with self._lock:
+            if self._spawner is not None and self._zygote is pending:
+                self._forked = self._spawner.submit(self._fork_ahead, zygote, limits)
+        return worker
+
+    @staticmethod
+    def _fork_ahead(zygote: Zygote, limits: Limits | None) -> tuple[Zygote, Any, Worker] | None:
+        try:
+            worker = zygote.worker(limits)
+            worker.wait_ready()
+        except SandboxError:
+            return None  # the next take forks its own
+        return zygote, limits, worker
+
     def close(self) -> None:
+        with self._lock:
+            forked, self._forked = self._forked, None
+        if forked is not None:
+            found = forked.result()
+            if found is not None:
+                found[2].close()
         with self._lock:
             zygote, self._zygote = self._zygote, None
         if zygote is not None:

@@ -164,7 +164,16 @@ def decode_frame(line: bytes) -> dict[str, Any]:
         raise ProtocolViolation("reply is not a JSON object")
     if type(obj.get("id")) is not int or type(obj.get("status")) is not str:
         raise ProtocolViolation("reply without an integer id and a status")
+    # the common reply: one JSON object (the envelope) and shallow lists, so its value holds
+    # only JSON scalars and lists; :func:`value_of` then need not walk it
+    obj["$plain"] = line.count(b"{") == 1 and line.count(b"[") <= MAX_DEPTH
     return obj
+
+
+def value_of(frame: dict[str, Any]) -> Any:
+    """A decoded reply's validated return value (see :func:`plain_value`)."""
+    value = frame["value"]
+    return value if frame.get("$plain") is True else plain_value(value)
 
 
 def plain_value(value: Any, depth: int = 0) -> Any:

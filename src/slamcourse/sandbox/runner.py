@@ -57,8 +57,8 @@ from slamcourse.sandbox.protocol import (
     frames_field,
     int_or_none,
     names_field,
-    plain_value,
     text_field,
+    value_of,
 )
 
 LoadStatus = Literal[
@@ -184,6 +184,8 @@ class _Capture:
         return max(0, len(self.data) - self.limit)
 
     def text(self) -> str:
+        if not self.data:
+            return ""
         text = clean_text(bytes(self.data[: self.limit]))
         if self.dropped:
             text += f"\n[… {self.dropped} more bytes of output discarded]"
@@ -400,6 +402,23 @@ class Worker:
     def alive(self) -> bool:
         return self._dead is None and not self._res.closed
 
+    @property
+    def fresh(self) -> bool:
+        """Started, never asked anything, and silent since: not dead, no output, no frame
+        (a worker forked ahead that another process killed meanwhile is not fresh)."""
+        return (
+            self.alive
+            and self._ready
+            and self._loaded is None
+            and not any(_readable(fd) for fd in (self._resp_r, self._out_r, self._err_r))
+        )
+
+    def wait_ready(self) -> None:
+        """Wait until the worker has started (its ``ready`` frame); :meth:`load` does this
+        itself. Raises :class:`SandboxError` if it cannot start."""
+        if self._dead is None:
+            self._await_ready()
+
     def load(
         self,
         source: str,
@@ -596,7 +615,7 @@ class Worker:
         if status == "ok":
             if "value" not in frame:
                 raise ProtocolViolation("ok reply without a value")
-            return CallResult("ok", value=plain_value(frame["value"]), **common)
+            return CallResult("ok", value=value_of(frame), **common)
         if status == "raised":
             return CallResult(
                 "raised", error=text_field(frame, "error"), frames=frames_field(frame), **common
@@ -684,7 +703,8 @@ class Worker:
             frame: dict[str, Any] | None = None,
             exit_code: int | None = None,
         ) -> _Outcome:
-            self._drain(out_cap, err_cap)
+            if frame is None or self._owed(frame, out_cap, err_cap):
+                self._drain(out_cap, err_cap)  # (a frame that owes nothing: no system call)
             if frame is not None:  # a frame says how much output its call wrote
                 self._attribute(frame, out_cap, err_cap)
             elapsed = time.monotonic() - start
@@ -817,6 +837,16 @@ class Worker:
             "protocol_error",
             f"the reply is larger than the {limits.frame_bytes}-byte frame limit",
         )
+
+    def _owed(self, frame: dict[str, Any], out_cap: _Capture, err_cap: _Capture) -> bool:
+        """Whether output the frame's call wrote may still be in the pipes (always, for a
+        frame without byte counts). Output written around the muted streams is not counted;
+        it is collected with a later reply."""
+        for i, (key, cap) in enumerate((("out", out_cap), ("err", err_cap))):
+            total = frame.get(key)
+            if type(total) is not int or total - self._taken[i] > len(cap.data):
+                return True
+        return False
 
     def _attribute(self, frame: dict[str, Any], out_cap: _Capture, err_cap: _Capture) -> None:
         """Batched calls run ahead of the replies read here: each frame carries the bytes
