@@ -15,19 +15,15 @@ each call on its own copy of the input, an argument changed in place reported.
 
 from __future__ import annotations
 
-import copy
 import dataclasses
-from collections.abc import Callable, Sequence
 from functools import cache
 from pathlib import Path
-from typing import Any
 
 import pytest
 
 from slamcourse.course.loader import load_course
 from slamcourse.grading import testset
-from slamcourse.grading.returns import to_plain
-from slamcourse.sandbox import CallResult
+from tests.callees import in_process, load
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
 COURSE = load_course(REPO_ROOT)
@@ -75,30 +71,10 @@ def without_examples(exercise: str) -> testset.TestSet:
     return testset.build(bare)
 
 
-def in_process(fn: Callable[..., Any]) -> Callable[[Sequence[Sequence[Any]]], list[CallResult]]:
-    def call_many(calls: Sequence[Sequence[Any]]) -> list[CallResult]:
-        results = []
-        for args in calls:
-            given = copy.deepcopy(list(args))
-            before = [testset.input_key({"x": a}) for a in given]
-            try:
-                result = CallResult("ok", to_plain(fn(*given)))
-            except Exception as exc:
-                result = CallResult("raised", error=f"{type(exc).__name__}: {exc}")
-            after = [testset.input_key({"x": a}) for a in given]
-            changed = tuple(i for i, (b, a) in enumerate(zip(before, after, strict=True)) if a != b)
-            results.append(dataclasses.replace(result, mutated=changed))
-        return results
-
-    return call_many
-
-
 def failing_origins(exercise: str, path: Path) -> set[str]:
     spec = COURSE.exercise(exercise)
     opts = spec.options
-    namespace: dict[str, Any] = {}
-    exec(compile(path.read_text(encoding="utf-8"), str(path), "exec"), namespace)
-    call_many = in_process(namespace[opts.function])
+    call_many = in_process(load(path, opts.function))
     tests = without_examples(exercise)
     failed = set()
     for case in tests.cases:

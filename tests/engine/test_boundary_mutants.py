@@ -10,9 +10,7 @@ sandbox (tests/engine/test_fixture_course.py).
 
 from __future__ import annotations
 
-import copy
 import dataclasses
-from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -22,44 +20,13 @@ from slamcourse.course.loader import load_course
 from slamcourse.course.model import ExerciseSpec
 from slamcourse.grading import testset
 from slamcourse.grading.domains import boundary_classes
-from slamcourse.grading.returns import to_plain
 from slamcourse.kinds.code import submission_files
-from slamcourse.sandbox import CallResult
+from tests.callees import in_process, load
 from tests.conftest import FIXTURE_COURSE
 
 COURSE = load_course(FIXTURE_COURSE)
 EXERCISES = ["boundaries/wrap", "boundaries/pose-distance", "boundaries/add-noise"]
 EXERCISES.append("boundaries/read-edges")
-
-
-# what the sandbox reports for one call: the real class, so a field grading starts to read
-# (``mutated``, ``flooded``) is never missing from the stand-in below
-Result = CallResult
-
-
-def load(path: Path, name: str) -> Callable[..., Any]:
-    namespace: dict[str, Any] = {}
-    exec(compile(path.read_text(encoding="utf-8"), str(path), "exec"), namespace)
-    fn: Callable[..., Any] = namespace[name]
-    return fn
-
-
-def in_process(fn: Callable[..., Any]) -> Any:  # a stand-in for Worker.call_many
-    def call_many(calls: Sequence[Sequence[Any]]) -> list[Result]:
-        results = []
-        for args in calls:
-            given = copy.deepcopy(list(args))
-            before = [testset.input_key({"x": a}) for a in given]
-            try:
-                result = Result("ok", to_plain(fn(*given)))
-            except Exception as exc:
-                result = Result("raised", error=f"{type(exc).__name__}: {exc}")
-            after = [testset.input_key({"x": a}) for a in given]
-            changed = tuple(i for i, (b, a) in enumerate(zip(before, after, strict=True)) if a != b)
-            results.append(dataclasses.replace(result, mutated=changed))
-        return results
-
-    return call_many
 
 
 def grade(spec: ExerciseSpec, tests: testset.TestSet, path: Path) -> Any:

@@ -211,3 +211,19 @@ def test_a_worker_forked_ahead_and_killed_meanwhile_is_replaced() -> None:
         second.close()
     finally:
         pool.close()
+
+
+def test_the_caller_can_stop_a_batch_once_it_has_enough(make_worker: MakeWorker) -> None:
+    """The validator needs one failure per file: the worker is stopped mid-batch (a slow
+    input later in the batch is never computed), and says it was stopped."""
+    from slamcourse.grading.testset import Calls
+
+    worker, loaded = make_worker("import time\ndef f(n):\n    time.sleep(n)\n    return n\n")
+    assert loaded.ok
+    calls = Calls([[0], [0.01], [3], [3]])
+    calls.enough = lambda index, result: index == 1
+    start = time.monotonic()
+    results = worker.call_many(calls)
+    assert time.monotonic() - start < 2.0
+    assert [r.value for r in results] == [0, 0.01]
+    assert not worker.alive

@@ -252,9 +252,12 @@ CallMany = Callable[[Sequence[Sequence[Any]]], list[CallResult]]
 
 class Calls(list[list[Any]]):
     """The argument lists of one chunk; ``encoded``: the same, already encoded for the
-    sandbox (a :class:`~slamcourse.sandbox.Worker` sends it as is; other callees ignore it)."""
+    sandbox (a :class:`~slamcourse.sandbox.Worker` sends it as is); ``enough(i, result)``:
+    called by the worker with each result as it arrives, True to stop there. Other callees
+    may ignore both."""
 
     encoded: bytes | None = None
+    enough: Callable[[int, CallResult], bool] | None = None
 
 
 def run_cases(
@@ -266,6 +269,8 @@ def run_cases(
     tolerance: Tolerance,
     mutable: Iterable[str] = (),
     cases: Sequence[Case] | None = None,
+    max_failures: int = MAX_RECORDED,
+    stop_worker: bool = True,
 ) -> tuple[Outcome, list[Case | None]]:
     """Call the learner's function on every case (``cases``: a subset) and compare.
 
@@ -273,7 +278,9 @@ def run_cases(
     up to :data:`~slamcourse.grading.properties.MAX_RECORDED` of them; ``agreed``: fixed cases
     the learner got right) and, parallel to ``outcome.failures``, the case of each failure.
     Stops at the first fatal result (timeout, crash, broken channel), after output was cut
-    (the function flooded its output: ``outcome.flooded``), and once enough failures are seen.
+    (the function flooded its output: ``outcome.flooded``), and after ``max_failures`` failures
+    (the validator needs only the first: whether a file passes); with ``stop_worker``, a
+    worker is stopped mid-chunk once the last failure wanted arrives.
     An argument the function changed in place (unless its name is in ``mutable``) is a
     failure of its own kind, ``mutated``.
     """
@@ -287,12 +294,33 @@ def run_cases(
         calls = Calls([case.kwargs[name] for name in signature] for case in chunk)
         if whole:  # the same chunks for every learner: encoded for the sandbox once
             calls.encoded = tests.encoded_chunk(start, tuple(signature), calls)
+        judged: dict[int, Failure | None] = {}
+        seen = [len(outcome.failures)]
+
+        def enough(
+            index: int,
+            result: CallResult,
+            chunk: list[Case] = chunk,
+            judged: dict[int, Failure | None] = judged,
+            seen: list[int] = seen,
+        ) -> bool:
+            """Judged as the results stream in: the last failure wanted ends the chunk there
+            (the worker is stopped rather than left computing inputs nobody will read)."""
+            judged[index] = _judge(chunk[index], result, signature, returns, tolerance, allowed)
+            seen[0] += judged[index] is not None
+            return seen[0] >= max_failures
+
+        if stop_worker:  # (not when the caller still needs the worker, e.g. to shrink)
+            calls.enough = enough
         results = call_many(calls)
         stop = False
-        for case, result in zip(chunk, results, strict=False):
+        for index, (case, result) in enumerate(zip(chunk, results, strict=False)):
             outcome.examples += 1
             outcome.call_seconds += result.seconds or 0.0
-            failure = _judge(case, result, signature, returns, tolerance, allowed)
+            if index in judged:
+                failure = judged[index]
+            else:
+                failure = _judge(case, result, signature, returns, tolerance, allowed)
             if result.output_cut:
                 outcome.output_cut = True
             if failure is None:
@@ -316,7 +344,7 @@ def run_cases(
                 break
         if stop or len(results) < len(chunk):
             break
-        if len(outcome.failures) >= MAX_RECORDED:
+        if len(outcome.failures) >= max_failures:
             break
     return outcome, failed_cases
 

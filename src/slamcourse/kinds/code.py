@@ -231,6 +231,7 @@ class CodeKind(Kind):
         hidden_seed: int | None = None,
         shrink: bool = True,
         tests: Any = None,
+        max_failures: int | None = None,
     ) -> Verdict:
         """Grade learner ``source`` in a fresh sandboxed worker: ``spawn(limits)`` hands one out
         (the engine's pool or a submission's zygote; ``limits`` is the exercise's own, or None
@@ -241,7 +242,8 @@ class CodeKind(Kind):
         here, plus the inputs drawn with ``hidden_seed`` if given (grading mode). ``shrink``
         lets Hypothesis shrink a failure on a visible input to a minimal one (a learner's check;
         the batch grader and the validator report the first failing input instead: same
-        status).
+        status). ``max_failures``: stop after that many failing inputs (default: as many as a
+        verdict reports; the validator asks for 1).
         """
         from slamcourse.answers.text import unreadable_at
         from slamcourse.errors import GraderError
@@ -281,6 +283,7 @@ class CodeKind(Kind):
                     isolation=worker.isolation.level,
                     output_cut=loaded.output_cut,
                     timing=timing,
+                    max_failures=max_failures,
                 )
                 return replace(verdict, learner_seconds=timing[0])
         except GraderError as exc:  # the grader's fault, said as such; no attempt is counted
@@ -297,6 +300,7 @@ class CodeKind(Kind):
         isolation: str,
         output_cut: bool = False,
         timing: list[float] | None = None,
+        max_failures: int | None = None,
     ) -> Verdict:
         """One pass over the test set ``tests`` (see :mod:`slamcourse.grading.testset`); with
         ``call`` (a single-call function), a failure on a visible input is then shrunk by a
@@ -317,6 +321,8 @@ class CodeKind(Kind):
             returns=opts.returns,
             tolerance=opts.tolerance,
             mutable=opts.mutates,
+            max_failures=MAX_RECORDED if max_failures is None else max_failures,
+            stop_worker=call is None,  # a shrinking check still needs its worker
         )
         outcome.output_cut = outcome.output_cut or output_cut
         if timing is not None:
@@ -579,7 +585,13 @@ class CodeKind(Kind):
             def grade(path: Path) -> Verdict:
                 source = read_course_file(path, spec.course_root)
                 return self.check_source(
-                    spec, source, path.name, shrink=False, tests=tests, spawn=zygote.worker
+                    spec,
+                    source,
+                    path.name,
+                    shrink=False,
+                    tests=tests,
+                    spawn=zygote.worker,
+                    max_failures=1,  # whether it passes is all the validator asks
                 )
 
             with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:

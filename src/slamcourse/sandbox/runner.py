@@ -291,13 +291,7 @@ class Worker:
         :func:`~slamcourse.sandbox.isolation.probe_isolation`).
         """
         limits = limits if limits is not None else Limits()
-        report = probe_isolation(force)
-        wanted = force or os.environ.get("SLAMCOURSE_SANDBOX", "auto")
-        if (require_isolation or wanted == "namespaces") and report.level != "namespaces":
-            raise SandboxError(
-                f"refusing to run learner code without namespace isolation: {report.reason}"
-            )
-        worker = cls(limits=limits, isolation=report)
+        worker = cls(limits=limits, isolation=_isolation(require_isolation, force))
         worker._start()
         return worker
 
@@ -323,16 +317,7 @@ class Worker:
                 f"out={limits.muted_after}",
                 "cg=" + ",".join(str(fd) for fd in cg_fds),
             ]
-            python = os.path.abspath(sys.executable)
-            if self._isolation.level == "namespaces":
-                assert self._isolation.bwrap is not None
-                program = [python, "-I", "-B", SANDBOX_WORKER_PATH, *worker_args]
-                cmd = bwrap_command(self._isolation.bwrap, limits, program)
-                env, cwd = {"PATH": "/usr/bin:/bin"}, "/"
-            else:
-                res.tmpdir = tempfile.mkdtemp(prefix="slamcourse-worker-")
-                cmd = [python, "-I", "-B", str(WORKER_SCRIPT), *worker_args]
-                env, cwd = worker_env(res.tmpdir), res.tmpdir
+            cmd, env, cwd = _command(self._isolation, limits, res, worker_args, "worker")
             self._spawned_at = time.monotonic()
             res.proc = subprocess.Popen(
                 cmd,
@@ -479,7 +464,10 @@ class Worker:
         protocol) or when a call's output was muted (the worker stops the batch there, so a
         flood is not repeated on every input). ``check`` as for :meth:`call`. ``calls`` may
         carry its request body already encoded (an ``encoded`` attribute, from
-        :func:`~slamcourse.sandbox.protocol.encode_calls`): a batch encodes its inputs once.
+        :func:`~slamcourse.sandbox.protocol.encode_calls`): a batch encodes its inputs once;
+        and a callback ``enough(index, result)``: when it returns True for a result that is not
+        the last, the worker is stopped there (killed: it is done) and the results so far are
+        returned.
         """
         if not calls:
             return []
@@ -494,6 +482,7 @@ class Worker:
         first = self._next_id + 1
         self._next_id += len(calls)
         encoded = getattr(calls, "encoded", None)
+        enough = getattr(calls, "enough", None)
         if op == "calls" and check and isinstance(encoded, bytes):  # encoded once for a batch
             payload = b'{"id":%d,' % first + encoded
         else:
@@ -545,6 +534,10 @@ class Worker:
                 results.append(replace(result, flooded=True))
                 break
             results.append(result)
+            if enough is not None and index + 1 < len(calls) and enough(index, result):
+                # the caller has what it needs: stop the worker mid-batch, not read on
+                self._fail("crashed", "stopped by the grader after the results it needed")
+                break
         return results
 
     def close(self) -> None:
@@ -870,6 +863,32 @@ class Worker:
                     break
 
 
+def _isolation(require_isolation: bool, force: str | None) -> IsolationReport:
+    """This machine's isolation level; SandboxError when namespaces are required but missing."""
+    report = probe_isolation(force)
+    wanted = force or os.environ.get("SLAMCOURSE_SANDBOX", "auto")
+    if (require_isolation or wanted == "namespaces") and report.level != "namespaces":
+        raise SandboxError(
+            f"refusing to run learner code without namespace isolation: {report.reason}"
+        )
+    return report
+
+
+def _command(
+    isolation: IsolationReport, limits: Limits, res: _Resources, args: list[str], what: str
+) -> tuple[list[str], dict[str, str], str]:
+    """The command, environment and working directory that start ``worker.py`` with
+    ``args``: inside bubblewrap, or (the fallback) in a private temporary directory."""
+    python = os.path.abspath(sys.executable)
+    if isolation.level == "namespaces":
+        assert isolation.bwrap is not None
+        program = [python, "-I", "-B", SANDBOX_WORKER_PATH, *args]
+        return bwrap_command(isolation.bwrap, limits, program), {"PATH": "/usr/bin:/bin"}, "/"
+    res.tmpdir = tempfile.mkdtemp(prefix=f"slamcourse-{what}-")
+    cmd = [python, "-I", "-B", str(WORKER_SCRIPT), *args]
+    return cmd, worker_env(res.tmpdir), res.tmpdir
+
+
 class _Forked:
     """A worker forked by a :class:`Zygote`. Its pid is the zygote's (in the zygote's pid
     namespace), so it is signalled and reaped through the zygote, never directly."""
@@ -932,13 +951,7 @@ class Zygote:
         start). ``require_isolation`` and ``force`` as for :meth:`Worker.spawn`; ``limits``
         gives the start-up time and the size of the private ``/tmp``."""
         limits = limits if limits is not None else Limits()
-        report = probe_isolation(force)
-        wanted = force or os.environ.get("SLAMCOURSE_SANDBOX", "auto")
-        if (require_isolation or wanted == "namespaces") and report.level != "namespaces":
-            raise SandboxError(
-                f"refusing to run learner code without namespace isolation: {report.reason}"
-            )
-        zygote = cls(limits=limits, isolation=report)
+        zygote = cls(limits=limits, isolation=_isolation(require_isolation, force))
         zygote._start()
         return zygote
 
@@ -948,16 +961,7 @@ class Zygote:
         started = time.monotonic()
         try:
             args = [f"zygote={theirs.fileno()}", f"frame={limits.frame_bytes}"]
-            python = os.path.abspath(sys.executable)
-            if self._isolation.level == "namespaces":
-                assert self._isolation.bwrap is not None
-                program = [python, "-I", "-B", SANDBOX_WORKER_PATH, *args]
-                cmd = bwrap_command(self._isolation.bwrap, limits, program)
-                env, cwd = {"PATH": "/usr/bin:/bin"}, "/"
-            else:
-                res.tmpdir = tempfile.mkdtemp(prefix="slamcourse-zygote-")
-                cmd = [python, "-I", "-B", str(WORKER_SCRIPT), *args]
-                env, cwd = worker_env(res.tmpdir), res.tmpdir
+            cmd, env, cwd = _command(self._isolation, limits, res, args, "zygote")
             res.proc = subprocess.Popen(
                 cmd,
                 stdin=subprocess.DEVNULL,
