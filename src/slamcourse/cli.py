@@ -484,15 +484,18 @@ def cmd_validate(args: argparse.Namespace, out: Out) -> int:
                 "exercises": report.exercises,
                 "variants": report.variants,
                 "problems": [str(p) for p in report.problems],
+                "warnings": [str(w) for w in report.warnings],
             }
         )
     else:
-        for p in report.problems:
+        for p in [*report.problems, *report.warnings]:
             out.line(str(p))
         summary = (
             f"{report.exercises} exercises, {report.variants} variants checked: "
             f"{len(report.problems)} problem{'s' if len(report.problems) != 1 else ''}"
         )
+        if report.warnings:
+            summary += f", {len(report.warnings)} warning{'s' if len(report.warnings) != 1 else ''}"
         out.line(out.style(summary, "bold", "green" if report.ok else "red"))
     return 0 if report.ok else 1
 

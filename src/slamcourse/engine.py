@@ -47,6 +47,35 @@ class Locked(UsageError):
     """
 
 
+class FileChanged(UsageError):
+    """A code exercise's file changed on disk since the editor that sent a new text loaded it;
+    nothing was written.
+
+    Fix: load the file's version into the editor, or keep the editor's text (send it again
+    based on the file's version, :attr:`disk_hash`, which overwrites the file).
+    """
+
+    def __init__(self, exercise_id: str, path: Path, disk_source: str, disk_hash: str) -> None:
+        super().__init__(
+            f"{path.name} changed on disk since the editor loaded it, so nothing was written: "
+            "load the file's version, or keep yours (overwrite the file)"
+        )
+        self.exercise_id = exercise_id
+        self.path = path
+        self.disk_source = disk_source
+        self.disk_hash = disk_hash
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "exercise": self.exercise_id,
+            "file": str(self.path),
+            "name": self.path.name,
+            "message": str(self),
+            "disk_source": self.disk_source,
+            "disk_hash": self.disk_hash,
+        }
+
+
 # ------------------------------------------------------------------------------ results
 
 
@@ -376,6 +405,41 @@ class Engine:
         if spec.kind != "code":
             raise UsageError(f"{exercise_id} is a {spec.kind} exercise, not a code exercise")
         return ensure_starter(spec, self.settings.workspace)[0]
+
+    def code_source(self, exercise_id: str) -> tuple[str, str]:
+        """The learner's file of a code exercise as ``(text, content hash)``: what an editor
+        shows, and the base it sends back with its text (:meth:`submit_edit`)."""
+        from slamcourse.workspace import read_source_and_hash
+
+        return read_source_and_hash(self.code_file(exercise_id))
+
+    def submit_edit(
+        self, exercise_id: str, source: str, *, based_on: str | None, overwrite: bool = False
+    ) -> tuple[Result, str | None]:
+        """An editor's check: save ``source`` to the learner's file, then grade ``source``
+        itself (never the file read back, which another save may have replaced meanwhile).
+
+        ``based_on``: the content hash of the file's text the editor loaded
+        (:meth:`code_source`). If the file changed on disk since, nothing is written or graded
+        and :class:`FileChanged` carries the file's version. ``overwrite``: save whatever the
+        file holds. Neither: the source is graded and not saved (a client that never loaded
+        the file cannot know what it would overwrite). Returns the result and the file's
+        content hash after the save (None when not saved)."""
+        from slamcourse.workspace import save_source
+
+        path = self.code_file(exercise_id)
+        saved_hash = None
+        if based_on is not None or overwrite:
+            try:
+                source.encode("utf-8")
+            except UnicodeEncodeError:
+                pass  # not a text a file can hold: graded (unreadable), never saved
+            else:
+                saved = save_source(path, source, based_on=None if overwrite else based_on)
+                if not saved.written:
+                    raise FileChanged(exercise_id, path, saved.text, saved.hash)
+                saved_hash = saved.hash
+        return self.submit_code(exercise_id, source=source, path=path), saved_hash
 
     # ---------------------------------------------------------------- grading
     def submit(

@@ -8,6 +8,7 @@ checks the recording of test inputs shipped with the course (``record=True`` rew
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -29,6 +30,7 @@ class Report:
     problems: list[Problem] = field(default_factory=list)
     exercises: int = 0
     variants: int = 0
+    warnings: list[Problem] = field(default_factory=list)  # shown, but never fail validation
 
     @property
     def ok(self) -> bool:
@@ -89,7 +91,172 @@ def validate_course(
                 record=record,
             )
         )
+    specs = []
+    for ex_id in course.exercise_ids if only is None else only:
+        try:
+            specs.append(course.exercise(ex_id))
+        except CourseError:
+            continue  # reported above
+    for spec in specs:
+        report.warnings.extend(letters_named(spec))
+    if only is None:  # a habit of the whole course, not of one exercise
+        report.warnings.extend(key_bias(specs))
     return report
+
+
+# ------------------------------------------------------------------------------ key bias
+
+BIAS_MIN = 3  # fewer exercises with the same habit say nothing
+BIAS_SHARE = 0.5  # a habit: at least half of the fixed keys, and twice what chance gives
+ORDINALS = ("first", "second", "third", "fourth", "fifth", "sixth", "seventh", "eighth")
+
+
+def key_bias(specs: list[ExerciseSpec]) -> list[Problem]:
+    """Warnings (never problems) where the fixed keys of the course's choice exercises follow
+    a habit a learner could learn: the correct option usually written at the same place, the
+    correct option usually the longest, a multi exercise's right options usually the first
+    ones written. Each warning is at the correct option's line of an exercise that follows
+    the habit. Keys computed by a reference vary with the variant and are not counted."""
+    single = [s for s in specs if s.kind == "choice" and not s.reference]
+    multi = [s for s in specs if s.kind == "multi" and not s.reference]
+    warnings: list[Problem] = []
+
+    # where the key is written: the same place from the start (or from the end) in most
+    at: dict[tuple[str, int], list[ExerciseSpec]] = {}
+    for spec in single:
+        ids = spec.options.ids()
+        i = next(n for n, c in enumerate(spec.options.choices) if c.correct)
+        at.setdefault(("start", i), []).append(spec)
+        at.setdefault(("end", len(ids) - 1 - i), []).append(spec)
+    if at:
+        (side, place), habit = max(at.items(), key=lambda kv: (len(kv[1]), kv[0][0] == "start"))
+        if _is_habit(habit, single, lambda s: 1 / len(s.options.choices)):
+            if side == "start":
+                where = ORDINALS[place] if place < len(ORDINALS) else f"number {place + 1}"
+            else:
+                where = "last" if place == 0 else f"{ORDINALS[place]} from the end"
+            for spec in habit:
+                key = next(c for c in spec.options.choices if c.correct)
+                leak = (
+                    "this exercise has `shuffle: false`, so its learners see it there: vary it"
+                    if not spec.options.shuffle
+                    else "learners see the options shuffled and relabelled per variant, so "
+                    "this does not give the answer away, but vary where you write the key"
+                )
+                warnings.append(
+                    _warning(
+                        spec,
+                        key.line,
+                        f"the correct choice '{key.id}' is written {where} of the options, as "
+                        f"in {len(habit)} of {len(single)} single-choice exercises with a fixed "
+                        f"key; {leak}",
+                    )
+                )
+
+    # the key is the longest option
+    longest = [s for s in single if _key_is_longest(s)]
+    if _is_habit(longest, single, lambda s: 1 / len(s.options.choices)):
+        for spec in longest:
+            key = next(c for c in spec.options.choices if c.correct)
+            warnings.append(
+                _warning(
+                    spec,
+                    key.line,
+                    f"the correct choice '{key.id}' is the longest option, as in "
+                    f"{len(longest)} of {len(single)} single-choice exercises with a fixed key: "
+                    "shuffling hides its position but not its length, so learners can guess "
+                    "it; shorten it or lengthen the other options",
+                )
+            )
+
+    # a multi exercise's right options are the first ones written
+    first = [s for s in multi if _keys_come_first(s)]
+    if _is_habit(first, multi, lambda s: 1 / _subsets(s)):
+        for spec in first:
+            key = [c for c in spec.options.choices if c.correct]
+            warnings.append(
+                _warning(
+                    spec,
+                    key[-1].line,
+                    f"the right options ({', '.join(c.id for c in key)}) are the first "
+                    f"{len(key)} written, as in {len(first)} of {len(multi)} multi exercises "
+                    "with a fixed key; learners see the options shuffled and relabelled per "
+                    "variant, so this does not give the answer away, but vary where you write "
+                    "them",
+                )
+            )
+    return warnings
+
+
+_LETTER_RUN = re.compile(r"\b[a-z](?:(?:, | and | or |, and |, or )[a-z]\b)+")
+
+
+def letters_named(spec: ExerciseSpec) -> list[Problem]:
+    """Warnings where the prose of a relabelled choice or order exercise names options by the
+    letters they were written with ("The order is a, b, c, d"): each learner sees them
+    shuffled and relabelled, so those letters are not the ones on their screen."""
+    if spec.kind == "order":
+        ids = [it.id for it in spec.options.items]
+        texts = list(spec.options.feedback.values())
+    elif spec.kind in ("choice", "multi") and spec.options.shuffle:
+        ids = spec.options.ids()
+        texts = [c.feedback for c in spec.options.choices]
+    else:
+        return []
+    if sorted(ids) != [chr(ord("a") + i) for i in range(len(ids))]:
+        return []  # named ids are shown as written
+    found = []
+    for where, text, line in [
+        ("prompt", spec.prompt.source, spec.prompt.line),
+        ("explanation", spec.explanation.source, spec.explanation.line),
+        *[("hint", h.source, h.line) for h in spec.hints],
+        *[("feedback", t, None) for t in texts],
+    ]:
+        prose = re.sub(r"\$[^$]*\$", " ", text)  # not the letters of formulas
+        for run in _LETTER_RUN.findall(prose):
+            if set(re.findall(r"\b[a-z]\b", run)) <= set(ids):
+                found.append(
+                    _warning(
+                        spec,
+                        line if line is not None else spec.line,
+                        f"the {where} names options by the letters they are written with "
+                        f"('{run}'), but each learner sees them shuffled under other "
+                        "letters; name them by their text",
+                    )
+                )
+                break
+    return found
+
+
+def _is_habit(
+    habit: list[ExerciseSpec], among: list[ExerciseSpec], chance: Callable[[ExerciseSpec], float]
+) -> bool:
+    if len(habit) < BIAS_MIN:
+        return False
+    expected = sum(chance(s) for s in among)  # how many follow it by chance
+    return len(habit) >= max(BIAS_SHARE * len(among), 2 * expected)
+
+
+def _key_is_longest(spec: ExerciseSpec) -> bool:
+    key = next(c for c in spec.options.choices if c.correct)
+    return all(len(key.text) > len(c.text) for c in spec.options.choices if c is not key)
+
+
+def _keys_come_first(spec: ExerciseSpec) -> bool:
+    flags = [c.correct for c in spec.options.choices]
+    k = sum(flags)
+    return k < len(flags) and all(flags[:k])
+
+
+def _subsets(spec: ExerciseSpec) -> int:
+    import math
+
+    choices = spec.options.choices
+    return math.comb(len(choices), sum(c.correct for c in choices))
+
+
+def _warning(spec: ExerciseSpec, line: int | None, message: str) -> Problem:
+    return Problem(relpath(spec.path, spec.course_root), line, f"warning: {message}")
 
 
 def validate_exercise(

@@ -150,7 +150,8 @@ def test_canonical_answer(exercise_id: str) -> None:
     got = kind.expected(spec, v)
     if spec.kind in ("choice", "multi"):
         assert sorted(got) == sorted(want)
-        answer = " ".join(want)
+        labels = kind.labels(spec, v)  # the letters variant 0 shows them under
+        answer = " ".join(labels[w] for w in want)
     elif spec.kind == "line":
         assert got == want
         answer = str(want)

@@ -77,12 +77,15 @@ def test_fixture_course_validates() -> None:
         ("basics/slope", "x^3", "failed", None, "your formula gives"),
         ("basics/slope", "2*y", "invalid", None, "y"),
         ("basics/slope", "__import__('os')", "invalid", None, ""),
-        ("basics/pick", "a", "passed", None, "all poses"),
+        # variant 0 shows the options shuffled and relabelled: pick c) is the pose graph
+        # optimiser (authored as a); several shows b) A, a) B, c) E
+        ("basics/pick", "c", "passed", None, "all poses"),
         ("basics/pick", "B", "failed", None, "sensor"),
         ("basics/pick", "z", "invalid", None, "no option 'z'"),
         ("basics/pick", "a b", "invalid", None, "exactly one"),
-        ("basics/several", "a c", "passed", None, ""),
-        ("basics/several", "c,a", "passed", None, ""),
+        ("basics/several", "b c", "passed", None, ""),
+        ("basics/several", "c,b", "passed", None, ""),
+        ("basics/several", "a b", "failed", None, "a) does not apply. B is a consonant."),
         ("basics/steps", "p m u", "passed", None, ""),
         ("basics/steps", "p m", "invalid", None, "missing u"),
         ("basics/bug", "3", "passed", None, ""),
@@ -101,7 +104,7 @@ def test_outcomes(
 
 
 def test_partial_credit(engine: Engine) -> None:
-    half = grade(engine, "basics/several", "a")
+    half = grade(engine, "basics/several", "b")
     assert (half.status, half.score) == ("failed", 0.5)
     assert "missing" in half.feedback
     assert grade(engine, "basics/several", "a b c").score == 0.5
@@ -181,7 +184,7 @@ def test_canonical_answers_are_practice_never_a_solve(engine: Engine) -> None:
     logged = engine.progress.attempts("basics/distance") if engine.progress else []
     assert [a.variant for a in logged] == [0, 0]  # graded and logged
     # an exercise without variants has only the canonical one: that is the learner's own
-    own = engine.submit("basics/pick", "a", canonical=True)
+    own = engine.submit("basics/pick", "c", canonical=True)
     assert own.passed and not own.practice and engine.state("basics/pick").status == "solved"
 
 

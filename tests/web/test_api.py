@@ -155,8 +155,9 @@ def test_hint_then_give_up(client: Any) -> None:
 def test_code_check_shows_counterexample(client: Any, engine: Engine) -> None:
     login(client)
     src = "import math\n\ndef range_bearing(dx, dy, theta):\n    return math.hypot(dx, dy), 0.0\n"
+    base = client.get("/api/exercise/basics/range-bearing").get_json()["source_hash"]
     data = client.post(
-        "/api/code/basics/range-bearing", json={"source": src}, headers=JSON
+        "/api/code/basics/range-bearing", json={"source": src, "based_on": base}, headers=JSON
     ).get_json()
     assert data["status"] == "failed"
     [test] = data["tests"]
@@ -164,6 +165,40 @@ def test_code_check_shows_counterexample(client: Any, engine: Engine) -> None:
     assert test["got"] is not None and test["expected"] is not None
     # the page's editor and the learner's file are one file
     assert engine.code_file("basics/range-bearing").read_text() == src
+    assert data["file_hash"] == engine.code_source("basics/range-bearing")[1]
+
+
+def test_code_check_never_overwrites_an_edit_on_disk(client: Any, engine: Engine) -> None:
+    """Issue 15: the page loaded the file, the learner edited it in their own editor, then
+    clicked Check in the page: a conflict (409), nothing written, both versions offered."""
+    login(client)
+    url = "/api/code/basics/range-bearing"
+    shown = client.get("/api/exercise/basics/range-bearing").get_json()
+    path = engine.code_file("basics/range-bearing")
+    mine = "def range_bearing(dx, dy, theta):\n    return 0, 0\n"
+    on_disk = "# my own editor\n" + mine
+    path.write_text(on_disk, encoding="utf-8")
+    base = shown.get("source_hash")
+    resp = client.post(url, json={"source": mine, "based_on": base}, headers=JSON)
+    assert path.read_text(encoding="utf-8") == on_disk, "the edit on disk was overwritten"
+    assert resp.status_code == 409
+    assert shown["source"] != on_disk and base
+    conflict = resp.get_json()["conflict"]
+    assert conflict["message"].startswith("range_bearing.py changed on disk")
+    assert conflict["disk_source"] == on_disk and conflict["name"] == "range_bearing.py"
+    assert path.read_text(encoding="utf-8") == on_disk
+    assert engine.state("basics/range-bearing").attempts == 0
+    # the same text as on disk is no conflict (nothing would be lost)
+    same = client.post(url, json={"source": on_disk, "based_on": "sha256:0"}, headers=JSON)
+    assert same.status_code == 200 and same.get_json()["file_hash"] == conflict["disk_hash"]
+    # without a base the source is graded, never saved; `overwrite` is the explicit choice
+    blind = client.post(url, json={"source": mine}, headers=JSON).get_json()
+    assert blind["status"] == "failed" and blind["file_hash"] is None
+    assert path.read_text(encoding="utf-8") == on_disk
+    forced = client.post(url, json={"source": mine, "overwrite": True}, headers=JSON)
+    assert forced.status_code == 200 and path.read_text(encoding="utf-8") == mine
+    bad = client.post(url, json={"source": mine, "based_on": 3}, headers=JSON)
+    assert bad.status_code == 400
 
 
 def test_chapter_page_renders_every_form(client: Any) -> None:

@@ -125,7 +125,7 @@ def test_code_counterexample_and_script_shown_as_text(page: Any, live: Any) -> N
 def test_progress_kept_on_reload(page: Any, live: Any) -> None:
     open_chapter(page, live)
     sec = section(page, "basics/pick")
-    sec.locator('[data-choice="a"]').click()
+    sec.locator("[data-choice]", has_text="A pose graph optimiser").click()  # relabelled
     page.locator("#ex-basics--pick .feedback.is-passed").wait_for()
     page.reload()
     page.wait_for_selector("html[data-ready='1']")

@@ -1,8 +1,15 @@
-"""The ``choice`` (one answer) and ``multi`` (several answers) kinds, with per-choice feedback."""
+"""The ``choice`` (one answer) and ``multi`` (several answers) kinds, with per-choice feedback.
+
+Options whose ids are mere labels (``a``, ``b``, ``c``, … or ``1``, ``2``, ``3``, …) are shown
+shuffled per variant and relabelled in the order shown: the letters a learner sees (and types)
+are a deterministic function of (exercise id, variant seed), the same in the terminal, the
+browser and the batch grader, and say nothing about the order the author wrote them in.
+"""
 
 from __future__ import annotations
 
 import random
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any, ClassVar
 
@@ -13,6 +20,20 @@ from slamcourse.course.yamlio import LineDict, LineList
 from slamcourse.errors import AnswerFormatError, Problem
 from slamcourse.kinds.base import Kind, call_reference, course_error, problem
 from slamcourse.verdict import Verdict
+
+LETTERS = "abcdefghijklmnopqrstuvwxyz"
+
+
+def position_labels(ids: Sequence[str]) -> list[str] | None:
+    """The labels ``a, b, c, …`` (or ``1, 2, 3, …``) when ``ids`` are exactly those labels in
+    some order: ids that only say where the author wrote an option, which the kinds relabel in
+    the order shown. None for named ids (``c1``…``c9``, ``p m u``), which are shown as
+    written."""
+    n = len(ids)
+    for alphabet in (list(LETTERS[:n]), [str(i) for i in range(1, n + 1)]):
+        if len(alphabet) == n and sorted(ids) == sorted(alphabet):
+            return alphabet
+    return None
 
 
 @dataclass(frozen=True)
@@ -26,8 +47,8 @@ class Choice:
 
 @dataclass(frozen=True)
 class ChoiceOptions:
-    choices: tuple[Choice, ...]
-    shuffle: bool
+    choices: tuple[Choice, ...]  # as written
+    shuffle: bool  # shown in a per-variant order (default: when the ids are mere labels)
 
     def ids(self) -> list[str]:
         return [c.id for c in self.choices]
@@ -90,7 +111,8 @@ class ChoiceKind(Kind):
                 )
             if self.multiple and not flagged:
                 check.add(raw.line_of("choices"), "mark at least one choice 'correct: true'")
-        return ChoiceOptions(tuple(choices), bool(check.typed(raw, "shuffle", bool, False)))
+        by_default = position_labels([c.id for c in choices]) is not None
+        return ChoiceOptions(tuple(choices), bool(check.typed(raw, "shuffle", bool, by_default)))
 
     def expected(self, spec: ExerciseSpec, variant: Variant) -> list[str]:
         opts: ChoiceOptions = spec.options
@@ -110,18 +132,39 @@ class ChoiceKind(Kind):
         return ids
 
     def display_order(self, spec: ExerciseSpec, variant: Variant) -> list[Choice]:
+        """The options in the order this variant shows them."""
         opts: ChoiceOptions = spec.options
         choices = list(opts.choices)
         if opts.shuffle:
             random.Random(f"{spec.id}:{variant.seed}:choices").shuffle(choices)
         return choices
 
+    def shown(self, spec: ExerciseSpec, variant: Variant) -> list[tuple[str, Choice]]:
+        """(label, option) in the order shown: the letters ``a, b, c, …`` in that order when
+        the authored ids are mere labels, else the authored ids. What a face shows, what a
+        learner types and what :meth:`check` reads."""
+        choices = self.display_order(spec, variant)
+        labels = position_labels([c.id for c in choices])
+        if labels is None:
+            return [(c.id, c) for c in choices]
+        return list(zip(labels, choices, strict=True))
+
+    def labels(self, spec: ExerciseSpec, variant: Variant) -> dict[str, str]:
+        """Authored id → the label this variant shows it under."""
+        return {c.id: label for label, c in self.shown(spec, variant)}
+
+    def shown_answer(self, spec: ExerciseSpec, variant: Variant) -> list[str]:
+        """The right answer as this variant's learner types it (labels, in the order shown).
+        :meth:`expected` is the same in authored ids (what an explanation template sees)."""
+        right = set(self.expected(spec, variant))
+        return [label for label, c in self.shown(spec, variant) if c.id in right]
+
     def form(self, spec: ExerciseSpec, variant: Variant) -> dict[str, Any]:
-        options = [{"id": c.id, "text": c.text} for c in self.display_order(spec, variant)]
+        options = [{"id": label, "text": c.text} for label, c in self.shown(spec, variant)]
         return {"type": self.name, "options": options}
 
     def how_to_answer(self, spec: ExerciseSpec, variant: Variant) -> str:
-        ids = ", ".join(c.id for c in self.display_order(spec, variant))
+        ids = ", ".join(label for label, _ in self.shown(spec, variant))
         if self.multiple:
             return (
                 f"Answer with every option that applies, e.g. `{self.example(spec, variant)}` "
@@ -132,39 +175,39 @@ class ChoiceKind(Kind):
     def example_candidates(self, spec: ExerciseSpec, variant: Variant) -> list[str]:
         if not self.multiple:
             return []
-        ids = [c.id for c in self.display_order(spec, variant)]
+        ids = [label for label, _ in self.shown(spec, variant)]
         return [f"{ids[0]} {ids[-1]}", ids[0], f"{ids[0]} {ids[1]}", ids[-1], " ".join(ids)]
 
-    def _read(self, spec: ExerciseSpec, answer: str) -> list[str]:
-        opts: ChoiceOptions = spec.options
+    def _read(self, spec: ExerciseSpec, variant: Variant, answer: str) -> list[tuple[str, Choice]]:
+        """The (label, option) pairs picked, each once, in the order given."""
+        by_label = dict(self.shown(spec, variant))
         picked = parse_ids(answer)
-        unknown = [p for p in picked if p not in opts.ids()]
+        unknown = [p for p in picked if p not in by_label]
         if unknown:
             raise AnswerFormatError(
-                f"there is no option '{unknown[0]}'; choose from {', '.join(opts.ids())}"
+                f"there is no option '{unknown[0]}'; choose from {', '.join(by_label)}"
             )
-        return list(dict.fromkeys(picked))
+        return [(p, by_label[p]) for p in dict.fromkeys(picked)]
 
     def check(self, spec: ExerciseSpec, variant: Variant, answer: str) -> Verdict:
         try:
-            picked = self._read(spec, answer)
+            picked = self._read(spec, variant, answer)
         except AnswerFormatError as exc:
             return Verdict.unreadable(str(exc))
         if len(picked) != 1:
             return Verdict.unreadable(f"choose exactly one option (you gave {len(picked)})")
-        right = self.expected(spec, variant)
-        choice = spec.options.by_id(picked[0])
-        if picked == right:
+        label, choice = picked[0]
+        if [choice.id] == self.expected(spec, variant):
             return Verdict.ok(f"Correct. {choice.feedback}".strip())
-        return Verdict.wrong(f"Not quite. {choice.feedback}".strip(), picked=picked)
+        return Verdict.wrong(f"Not quite. {choice.feedback}".strip(), picked=[label])
 
     def self_test(self, spec: ExerciseSpec, variant: Variant) -> list[Problem]:
-        right = self.expected(spec, variant)
+        right = self.shown_answer(spec, variant)
         problems = []
         if not self.check(spec, variant, " ".join(right)).passed:
             problems.append(problem(spec, spec.line, "the correct choice is not accepted"))
-        for c in spec.options.choices:
-            if c.id not in right and self.check(spec, variant, c.id).passed:
+        for label, c in self.shown(spec, variant):
+            if label not in right and self.check(spec, variant, label).passed:
                 problems.append(problem(spec, c.line, f"wrong choice '{c.id}' is accepted"))
         return problems
 
@@ -177,33 +220,32 @@ class MultiKind(ChoiceKind):
 
     def check(self, spec: ExerciseSpec, variant: Variant, answer: str) -> Verdict:
         try:
-            picked = self._read(spec, answer)
+            picked = self._read(spec, variant, answer)
         except AnswerFormatError as exc:
             return Verdict.unreadable(str(exc))
         right = set(self.expected(spec, variant))
-        wrong_picks = [p for p in picked if p not in right]
-        hits = len([p for p in picked if p in right])
+        wrong_picks = [(label, c) for label, c in picked if c.id not in right]
+        hits = len([c for _, c in picked if c.id in right])
         score = max(0.0, (hits - len(wrong_picks)) / len(right))
         if not wrong_picks and hits == len(right):
             return Verdict.ok("Correct: exactly the right options.")
         parts = [f"Not quite ({hits} of {len(right)} right options picked)."]
-        for p in wrong_picks:
-            fb = spec.options.by_id(p).feedback
-            parts.append(f"{p}) does not apply. {fb}".strip())
+        for label, c in wrong_picks:
+            parts.append(f"{label}) does not apply. {c.feedback}".strip())
         missing = len(right) - hits
         if missing:
             parts.append(
                 f"{missing} option{'s' if missing > 1 else ''} that appl"
                 f"{'y' if missing > 1 else 'ies'} {'are' if missing > 1 else 'is'} missing."
             )
-        return Verdict.wrong(" ".join(parts), score=score, picked=picked)
+        return Verdict.wrong(" ".join(parts), score=score, picked=[label for label, _ in picked])
 
     def self_test(self, spec: ExerciseSpec, variant: Variant) -> list[Problem]:
-        right = self.expected(spec, variant)
+        right = self.shown_answer(spec, variant)
         problems = []
         if not self.check(spec, variant, " ".join(right)).passed:
             problems.append(problem(spec, spec.line, "the correct set of choices is not accepted"))
-        for c in spec.options.choices:
-            if c.id not in right and self.check(spec, variant, " ".join([*right, c.id])).passed:
+        for label, c in self.shown(spec, variant):
+            if label not in right and self.check(spec, variant, " ".join([*right, label])).passed:
                 problems.append(problem(spec, c.line, f"adding wrong choice '{c.id}' is accepted"))
         return problems

@@ -1,4 +1,9 @@
-"""The ``order`` kind: put steps in order; partial credit by the longest correctly ordered run."""
+"""The ``order`` kind: put steps in order; partial credit by the longest correctly ordered run.
+
+Items are shown shuffled per variant; items whose ids are mere labels (``a``, ``b``, ``c``, …
+or ``1``, ``2``, ``3``, …, written in the correct order) are relabelled in the order shown, so
+the letters a learner sees and types never spell the answer (see ``kinds/choice.py``).
+"""
 
 from __future__ import annotations
 
@@ -13,6 +18,7 @@ from slamcourse.course.schema import Checker
 from slamcourse.course.yamlio import LineDict, LineList
 from slamcourse.errors import AnswerFormatError, Problem
 from slamcourse.kinds.base import Kind, problem
+from slamcourse.kinds.choice import position_labels
 from slamcourse.verdict import Verdict
 
 
@@ -99,8 +105,28 @@ class OrderKind(Kind):
             shuffled = shuffled[1:] + shuffled[:1]
         return shuffled
 
+    def shown(self, spec: ExerciseSpec, variant: Variant) -> list[tuple[str, Item]]:
+        """(label, item) in the order shown: the letters ``a, b, c, …`` in that order when the
+        authored ids are mere labels, else the authored ids. What a face shows, what a learner
+        types and what :meth:`check` reads."""
+        items = self.display_order(spec, variant)
+        labels = position_labels([it.id for it in items])
+        if labels is None:
+            return [(it.id, it) for it in items]
+        return list(zip(labels, items, strict=True))
+
+    def labels(self, spec: ExerciseSpec, variant: Variant) -> dict[str, str]:
+        """Authored id → the label this variant shows it under."""
+        return {it.id: label for label, it in self.shown(spec, variant)}
+
+    def shown_answer(self, spec: ExerciseSpec, variant: Variant) -> list[str]:
+        """The right order as this variant's learner types it (labels); :meth:`expected` is
+        the same in authored ids."""
+        labels = self.labels(spec, variant)
+        return [labels[i] for i in self.expected(spec, variant)]
+
     def form(self, spec: ExerciseSpec, variant: Variant) -> dict[str, Any]:
-        items = [{"id": it.id, "text": it.text} for it in self.display_order(spec, variant)]
+        items = [{"id": label, "text": it.text} for label, it in self.shown(spec, variant)]
         return {"type": "order", "items": items}
 
     def how_to_answer(self, spec: ExerciseSpec, variant: Variant) -> str:
@@ -110,22 +136,24 @@ class OrderKind(Kind):
         )
 
     def example_candidates(self, spec: ExerciseSpec, variant: Variant) -> list[str]:
-        ids = [it.id for it in self.display_order(spec, variant)]
+        ids = [label for label, _ in self.shown(spec, variant)]
         return [" ".join(ids), " ".join(reversed(ids)), " ".join(ids[1:] + ids[:1])]
 
     def check(self, spec: ExerciseSpec, variant: Variant, answer: str) -> Verdict:
-        right = self.expected(spec, variant)
+        shown = self.shown(spec, variant)
+        by_label = dict(shown)
+        right = self.shown_answer(spec, variant)
         try:
             given = parse_ids(answer)
         except AnswerFormatError as exc:
             return Verdict.unreadable(str(exc))
-        unknown = [g for g in given if g not in right]
+        unknown = [g for g in given if g not in by_label]
         if unknown:
             return Verdict.unreadable(
-                f"there is no item '{unknown[0]}'; the items are {', '.join(sorted(right))}"
+                f"there is no item '{unknown[0]}'; the items are {', '.join(sorted(by_label))}"
             )
         if sorted(given) != sorted(right):
-            missing = [r for r in right if r not in given]
+            missing = [label for label, _ in shown if label not in given]
             twice = sorted({g for g in given if given.count(g) > 1})
             what = f"missing {', '.join(missing)}" if missing else f"repeated {', '.join(twice)}"
             return Verdict.unreadable(f"use each item exactly once ({what})")
@@ -134,18 +162,18 @@ class OrderKind(Kind):
         run = longest_ordered([right.index(g) for g in given])
         in_run = {given[i] for i in run}
         out = [g for g in given if g not in in_run]
-        by_id = {it.id: it for it in spec.options.items}
         parts = [f"Not quite: {len(run)} of {len(right)} steps are in the right relative order."]
-        listed = "; ".join(f"{g}) {by_id[g].text.rstrip('.')}" for g in out)
+        listed = "; ".join(f"{g}) {by_label[g].text.rstrip('.')}" for g in out)
         parts.append(f"Out of place: {listed}.")
-        parts += [spec.options.feedback[g] for g in out if g in spec.options.feedback]
+        feedback = spec.options.feedback
+        parts += [feedback[by_label[g].id] for g in out if by_label[g].id in feedback]
         return Verdict.wrong(" ".join(parts), score=len(run) / len(right), out_of_place=out)
 
     def self_test(self, spec: ExerciseSpec, variant: Variant) -> list[Problem]:
         problems = []
-        if not self.check(spec, variant, " ".join(self.expected(spec, variant))).passed:
+        if not self.check(spec, variant, " ".join(self.shown_answer(spec, variant))).passed:
             problems.append(problem(spec, spec.line, "the correct order is not accepted"))
-        shown = " ".join(it.id for it in self.display_order(spec, variant))
+        shown = " ".join(label for label, _ in self.shown(spec, variant))
         if self.check(spec, variant, shown).passed:
             problems.append(problem(spec, spec.line, "the order shown is already accepted"))
         return problems

@@ -18,14 +18,13 @@ from __future__ import annotations
 import hmac
 import secrets
 from collections.abc import Iterable
-from pathlib import Path
 from typing import TYPE_CHECKING, Any
 from urllib.parse import urlencode
 
 from flask import Flask, Response, abort, g, jsonify, redirect, render_template, request, url_for
 from markupsafe import Markup
 
-from slamcourse.engine import Locked
+from slamcourse.engine import FileChanged, Locked
 from slamcourse.errors import SlamcourseError
 from slamcourse.web.markdown import to_html, to_inline_html
 
@@ -91,7 +90,7 @@ def create_app(engine: Engine, *, token: str, hosts: Iterable[str]) -> Flask:
             return None
         given = request.args.get("token")
         if given is not None:
-            if not hmac.compare_digest(given, token):
+            if not _same(given, token):
                 return refuse(403, "Wrong token: open the address `slamcourse serve` printed.")
             if request.method == "GET":
                 rest = {k: v for k, v in request.args.items() if k != "token"}
@@ -99,7 +98,7 @@ def create_app(engine: Engine, *, token: str, hosts: Iterable[str]) -> Flask:
                 resp = redirect(target, code=303)
                 resp.set_cookie(cookie, token, httponly=True, samesite="Strict", path="/")
                 return resp
-        elif not hmac.compare_digest(request.cookies.get(cookie, ""), token):
+        elif not _same(request.cookies.get(cookie, ""), token):
             return refuse(
                 403, "This page needs the token: open the address `slamcourse serve` printed."
             )
@@ -132,6 +131,11 @@ def create_app(engine: Engine, *, token: str, hosts: Iterable[str]) -> Flask:
     @app.errorhandler(Locked)
     def locked(exc: Locked) -> BaseResponse:
         return refuse(403, str(exc))
+
+    @app.errorhandler(FileChanged)
+    def file_changed(exc: FileChanged) -> BaseResponse:
+        body = {"error": str(exc), "conflict": exc.to_dict()}
+        return Response(_json(body), status=409, mimetype="application/json")
 
     @app.errorhandler(SlamcourseError)
     def usage(exc: SlamcourseError) -> BaseResponse:
@@ -204,6 +208,8 @@ def create_app(engine: Engine, *, token: str, hosts: Iterable[str]) -> Flask:
         data = prompt.to_dict()
         data["text_html"] = str(to_html(prompt.text))
         data["plot_svg"] = _plot(engine, prompt)
+        if prompt.kind == "code":  # the editor's text and the base a check sends back
+            data["source"], data["source_hash"] = engine.code_source(exercise_id)
         return jsonify(data)
 
     @app.post("/api/answer/<path:exercise_id>")
@@ -217,15 +223,19 @@ def create_app(engine: Engine, *, token: str, hosts: Iterable[str]) -> Flask:
 
     @app.post("/api/code/<path:exercise_id>")
     def api_code(exercise_id: str) -> Response:
-        source = _body().get("source")
+        body = _body()
+        source, based_on = body.get("source"), body.get("based_on")
         if not isinstance(source, str) or len(source) > MAX_ANSWER:
             raise _BadRequest("`source` must be a text of at most 64 KiB")
+        if based_on is not None and not isinstance(based_on, str):
+            raise _BadRequest("`based_on` must be the content hash the page received")
         # The page's editor and the learner's workspace file are one file: the terminal's
-        # `slamcourse check ID` and `watch` grade what was last checked here.
-        path = engine.code_file(exercise_id)
-        path.write_text(source, encoding="utf-8")
-        result = engine.submit_code(exercise_id, path=path)
-        return jsonify(_result_json(engine, result))
+        # `slamcourse check ID` and `watch` grade what was last checked here. The engine saves
+        # only over the version the page loaded (else FileChanged: 409) and grades `source`.
+        result, file_hash = engine.submit_edit(
+            exercise_id, source, based_on=based_on, overwrite=body.get("overwrite") is True
+        )
+        return jsonify({**_result_json(engine, result), "file_hash": file_hash})
 
     @app.post("/api/hint/<path:exercise_id>")
     def api_hint(exercise_id: str) -> Response:
@@ -271,8 +281,21 @@ def _json(data: Any) -> str:
     return json.dumps(data, ensure_ascii=False)
 
 
+def _same(given: str, token: str) -> bool:
+    """Constant-time comparison of a token from the address or the cookie (any text, even
+    non-ASCII or a lone surrogate, which ``compare_digest`` refuses as ``str``)."""
+    return hmac.compare_digest(given.encode("utf-8", "surrogatepass"), token.encode("utf-8"))
+
+
 def _body() -> dict[str, Any]:
-    data = request.get_json(silent=True)
+    import json
+
+    # past MAX_BODY, with a length or chunked, get_data raises RequestEntityTooLarge (413)
+    raw = request.get_data(cache=True)
+    try:
+        data = json.loads(raw)
+    except (ValueError, RecursionError):  # not JSON, not UTF-8, or nested too deeply
+        data = None
     if not isinstance(data, dict):
         raise _BadRequest("the request body must be a JSON object")
     return data
@@ -301,9 +324,9 @@ def _exercise_view(engine: Engine, exercise_id: str) -> dict[str, Any]:
     explanation = None
     if data["status"] != "pending":
         explanation = engine.explanation(exercise_id)
-    source = None
+    source = source_hash = None
     if data["kind"] == "code":
-        source = Path(engine.code_file(exercise_id)).read_text(encoding="utf-8")
+        source, source_hash = engine.code_source(exercise_id)
     svg = _plot(engine, prompt)
     return {
         **data,
@@ -314,6 +337,7 @@ def _exercise_view(engine: Engine, exercise_id: str) -> dict[str, Any]:
         "hints_html": [to_html(h) for h in data["hints"]["shown"]],
         "explanation_html": to_html(explanation) if explanation else None,
         "source": source,
+        "source_hash": source_hash,
         "plot": Markup(svg) if svg else None,
     }
 

@@ -237,17 +237,27 @@
     section.querySelectorAll("[data-answer] button").forEach((b) => (b.disabled = on));
   }
 
-  async function submit(section, answer) {
+  // ``base``: the content hash of the file's version this text replaces (the one the page
+  // loaded, or the one a conflict showed when the learner keeps their text).
+  async function submit(section, answer, base) {
     const id = section.dataset.exercise;
     busy(section, true);
     let result;
     try {
       if (section.dataset.form === "code") {
-        const src = section.querySelector("[data-code]").value;
+        const area = section.querySelector("[data-code]");
         const fb = section.querySelector("[data-feedback]");
         fb.className = "feedback";
         fb.textContent = "Running your code in the sandbox…";
-        result = await post(api("code", id), { source: src });
+        result = await post(api("code", id), {
+          source: area.value,
+          based_on: base || area.dataset.hash,
+        });
+        if (result.file_hash) area.dataset.hash = result.file_hash;
+        if (result.conflict) {
+          busy(section, false);
+          return showConflict(section, result.conflict);
+        }
       } else {
         const canonical = !!(section.querySelector("[data-practice]") || {}).checked;
         result = await post(api("answer", id), { answer: answer, canonical: canonical });
@@ -395,6 +405,49 @@
   }
 
   // ------------------------------------------------------------------ code editor
+  const editors = new WeakMap(); // textarea -> CodeMirror view
+
+  function setCode(area, text) {
+    const view = editors.get(area);
+    if (view) view.dispatch({ changes: { from: 0, to: view.state.doc.length, insert: text } });
+    else {
+      area.value = text;
+      area.dispatchEvent(new Event("input"));
+    }
+  }
+
+  // The file changed on disk since the page loaded it: nothing was written or graded. The
+  // engine's message, and the learner's two choices.
+  function showConflict(section, conflict) {
+    const fb = section.querySelector("[data-feedback]");
+    fb.className = "feedback is-conflict";
+    const p = document.createElement("p");
+    p.className = "verdict";
+    p.textContent = "! " + conflict.message;
+    const load = document.createElement("button");
+    load.type = "button";
+    load.dataset.loadDisk = "";
+    load.textContent = "Load the file's version";
+    const keep = document.createElement("button");
+    keep.type = "button";
+    keep.dataset.keepMine = "";
+    keep.textContent = "Keep mine (overwrite " + conflict.name + ")";
+    const area = section.querySelector("[data-code]");
+    load.addEventListener("click", function () {
+      setCode(area, conflict.disk_source);
+      area.dataset.hash = conflict.disk_hash;
+      announce(section, "Loaded " + conflict.name + " from disk. Check it when you are ready.");
+    });
+    keep.addEventListener("click", function () {
+      submit(section, null, conflict.disk_hash);
+    });
+    const choices = document.createElement("p");
+    choices.className = "choices";
+    choices.append(load, " ", keep);
+    fb.replaceChildren(p, choices);
+    load.focus();
+  }
+
   function gutter(area, pre) {
     const n = area.value.split("\n").length;
     const lines = [];
@@ -525,7 +578,8 @@
       const pre = section.querySelector("[data-gutter]");
       pre.hidden = true;
       const nonce = document.querySelector('meta[name="slamcourse-style-nonce"]');
-      window.SlamEditor.fromTextArea(area, area.getAttribute("aria-label"), nonce && nonce.content);
+      const label = area.getAttribute("aria-label");
+      editors.set(area, window.SlamEditor.fromTextArea(area, label, nonce && nonce.content));
     } else if (area) {
       const pre = section.querySelector("[data-gutter]");
       gutter(area, pre);
