@@ -2,8 +2,9 @@
 # Install slamcourse (system packages via apt when missing, Python packages via pip into .venv),
 # put the `slamcourse` command on your PATH (a link in ~/.local/bin), and start the bundled
 # course: `slamcourse next` in this terminal, or `bash scripts/start.sh serve` for the browser.
-# Progress lives in an embedded SQLite file (`slamcourse doctor` prints where). Other arguments
-# go to the command.
+# Progress lives in an embedded SQLite file (`slamcourse doctor` prints where). A first argument
+# that names another command runs it (`bash scripts/start.sh status`, `… list`, `… doctor`);
+# options alone go to `next` (`bash scripts/start.sh --no-context`).
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 EXTRAS="" source scripts/setup.sh
@@ -28,5 +29,6 @@ esac
 case "${1:-next}" in
   serve) shift; exec .venv/bin/slamcourse serve "$@" ;;
   next) [ $# -gt 0 ] && shift; exec .venv/bin/slamcourse next "$@" ;;
-  *) exec .venv/bin/slamcourse next "$@" ;;
+  -*) exec .venv/bin/slamcourse next "$@" ;;
+  *) exec .venv/bin/slamcourse "$@" ;;
 esac

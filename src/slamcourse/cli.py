@@ -102,8 +102,9 @@ def print_result(
     then what the engine's rules add (practice note, nudge, explanation once passed)."""
     verdict = result.verdict
     out.line(out.style(VERDICT_LABEL[verdict.status], *VERDICT_STYLE[verdict.status]))
-    feedback = verdict.feedback
-    out.markdown(feedback[:1].upper() + feedback[1:])
+    from slamcourse.verdict import capitalised
+
+    out.markdown(capitalised(verdict.feedback))  # never `Syn.py:1` or `Mahalanobis(…)`
     if verdict.status in ("invalid", "error"):
         out.line(out.style("(no attempt counted)", "dim"))
     elif result.practice:
@@ -219,14 +220,17 @@ def cmd_next(args: argparse.Namespace, out: Out) -> int:
     """The interactive learner loop (rustlings-style)."""
     with _engine(args) as engine:
         while True:
-            exercise_id = engine.next_exercise()
+            step = engine.next_step()  # the browser's "Next exercise" asks the same
+            exercise_id = step.exercise_id
             if exercise_id is None:
                 out.line(
                     out.style("Every exercise is solved or given up. Well done!", "bold", "green")
                 )
                 out.line("`slamcourse list` shows them all; `slamcourse reset ID` opens one again.")
                 return 0
-            engine.goto(exercise_id)
+            if step.note:
+                out.line()
+                out.markdown(step.note)
             if not _pose(out, engine, exercise_id, args):
                 return 0
 
@@ -275,7 +279,7 @@ def _pose(out: Out, engine: Engine, exercise_id: str, args: argparse.Namespace) 
             continue
         if command in (":s", ":skip", "skip"):
             engine.skip(exercise_id)
-            out.line("Skipped; it stays open for later.")
+            out.line("Skipped: it stays open, and `next` comes back to it when the rest are done.")
             return True
         if command in (":g", ":giveup", "giveup", "give up"):
             out.line(out.style("Explanation", "bold"))
@@ -387,11 +391,11 @@ def cmd_list(args: argparse.Namespace, out: Out) -> int:
         if args.json:
             out.json(summary)
             return 0
-        marks = {
-            "solved": out.style("✓", "green"),
-            "given_up": out.style("~", "yellow"),
-            "pending": out.style("·", "dim"),
-        }
+        from slamcourse.engine import STATUS_MARK, STATUS_WORD
+
+        styles = {"solved": ("green",), "given_up": ("yellow",), "pending": ("dim",)}
+        styles["skipped"] = ("cyan",)
+        marks = {state: out.style(STATUS_MARK[state], *style) for state, style in styles.items()}
         for ch in summary:
             out.line(
                 out.style(f"{ch['number']:>2}. {ch['title']}", "bold")
@@ -400,7 +404,13 @@ def cmd_list(args: argparse.Namespace, out: Out) -> int:
             for row in ch["exercises"]:
                 pointer = out.style(" ← next", "cyan") if row["current"] else ""
                 title = _math(row["title"])
-                out.line(f"    {marks[row['status']]} {row['id']:<40} {title}{pointer}")
+                state = (
+                    "skipped" if row["status"] == "pending" and row["skipped"] else row["status"]
+                )
+                out.line(f"    {marks[state]} {row['id']:<40} {title}{pointer}")
+        legend = "   ".join(f"{marks[state]} {STATUS_WORD[state]}" for state in styles)
+        out.line()
+        out.line(f"{legend}   {out.style('← next', 'cyan')}: what `slamcourse next` poses")
         return 0
 
 
@@ -433,8 +443,10 @@ def cmd_status(args: argparse.Namespace, out: Out) -> int:
 
 def cmd_goto(args: argparse.Namespace, out: Out) -> int:
     with _engine(args) as engine:
-        engine.goto(args.exercise)
+        step = engine.goto(args.exercise)
         out.line(f"`slamcourse next` will pose {args.exercise}.")
+        if step.note:
+            out.markdown(step.note)
         return 0
 
 
@@ -562,15 +574,19 @@ def cmd_watch(args: argparse.Namespace, out: Out) -> int:
         exercise_id = _target(engine, args.exercise)
         path = engine.code_file(exercise_id)
         engine.start_workers()
-        out.line(f"Watching {out.style(str(path), 'bold')} ({exercise_id}); Ctrl-C to stop.")
+        out.line(
+            f"Watching {out.style(str(path), 'bold')} ({exercise_id}): save it to check again. "
+            f"Ctrl-C to stop; `slamcourse hint {exercise_id}` in another terminal for a hint."
+        )
         while True:
             before = signature(path)
             result = engine.submit_code(exercise_id, path=path)
-            print_result(out, result)
+            # watch reads no commands, so the nudge names the command to run, not `:hint`
+            print_result(out, result, interactive=False)
             if result.passed:
                 return 0
-            mechanism = wait_for_change(path, poll=args.poll, since=before)
-            out.line(out.style(f"changed ({mechanism}); checking…", "dim"))
+            wait_for_change(path, poll=args.poll, since=before)
+            out.line(out.style(f"{path.name} saved; checking again…", "dim"))
 
 
 # ------------------------------------------------------------------------------ parser

@@ -34,10 +34,16 @@ from slamcourse.verdict import Verdict
 if TYPE_CHECKING:
     from collections.abc import Callable
 
+    from slamcourse.course.model import Chapter
     from slamcourse.grading.pool import WorkerPool
 
 NUDGE_AFTER = 2
 """Counted misses, with no hint taken, after which a result suggests a hint."""
+
+STATUS_MARK = {"solved": "✓", "given_up": "⚐", "pending": "○", "skipped": "↷"}
+"""The one mark of each exercise state, in every face (``skipped``: pending, passed over)."""
+STATUS_WORD = {"solved": "solved", "given_up": "given up", "pending": "open", "skipped": "skipped"}
+"""The one word of each exercise state, in every face."""
 
 
 class Locked(UsageError):
@@ -217,6 +223,65 @@ class Result:
 
 
 @dataclass(frozen=True)
+class NextStep:
+    """Which exercise ``next`` poses, and why: the faces show :attr:`note` as it is.
+
+    The rule (:meth:`Engine.next_step`): after an exercise is solved or given up (or skipped),
+    the next open exercise after it in its chapter, then in the following chapters, then
+    wrapping to the earliest open one; skipped exercises are passed over (and named) until only
+    they remain. ``goto`` pins an exercise, which is posed whatever its status.
+    """
+
+    exercise_id: str | None  # None: every exercise is solved or given up
+    after: str | None  # the exercise it follows (None: pinned by goto, or from the start)
+    pinned: bool  # asked for by goto
+    status: str  # the posed exercise's status (a pinned one may be solved)
+    wrapped: bool  # past the end of the course, back to the earliest open exercise
+    passed_over: tuple[str, ...]  # skipped exercises passed over on the way
+    only_skipped: bool  # every open exercise left was skipped: back to one of them
+
+    @property
+    def note(self) -> str | None:
+        """What a face says before posing it (Markdown), or None when it is simply next."""
+        ex = self.exercise_id
+        if ex is None:
+            return None
+        parts = []
+        if self.pinned and self.status == "solved":
+            parts.append(
+                f"`{ex}` is already solved; it is posed again as asked (answers are graded as "
+                "usual, and it stays solved)."
+            )
+        elif self.pinned and self.status == "given_up":
+            parts.append(
+                f"`{ex}` was given up; it is posed again as asked (solving it now marks it solved)."
+            )
+        if self.passed_over:
+            n = len(self.passed_over)
+            names = ", ".join(f"`{e}`" for e in self.passed_over)
+            parts.append(f"Passing over {n} skipped exercise{'s' if n != 1 else ''}: {names}.")
+        if self.only_skipped:
+            parts.append(f"Only skipped exercises are left: back to `{ex}`.")
+        elif self.wrapped:
+            parts.append(
+                f"No open exercise after `{self.after}`: back to the earliest open one, `{ex}`."
+            )
+        return " ".join(parts) or None
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "exercise": self.exercise_id,
+            "after": self.after,
+            "pinned": self.pinned,
+            "status": self.status,
+            "wrapped": self.wrapped,
+            "passed_over": list(self.passed_over),
+            "only_skipped": self.only_skipped,
+            "note": self.note,
+        }
+
+
+@dataclass(frozen=True)
 class Hint:
     number: int
     total: int
@@ -245,6 +310,8 @@ class Engine:
         self._pool: WorkerPool | None = None
         self._fork_workers = False
         self._pool_lock = threading.Lock()
+        self._nav_lock = threading.Lock()  # skipped: read, change, write
+        self._summary = _SummaryCache()
 
     @classmethod
     def open(
@@ -293,10 +360,15 @@ class Engine:
         )
 
     def start_workers(self) -> None:
-        """For long-running faces: keep a sandbox worker ready for the next code check."""
+        """For long-running faces (one learner's home: the browser, ``watch``, ``next``): code
+        checks get fresh workers forked from one sandboxed zygote, the next one forked ahead,
+        so a check pays no interpreter start and a burst of checks does not starve the
+        server's other requests of CPU."""
         with self._pool_lock:
-            if self._pool is None or not self._pool.keep_spare:
-                old, self._pool = self._pool, self._new_pool(self.settings, keep_spare=True)
+            if self._pool is None or not self._pool.fork:
+                old, self._pool = self._pool, self._new_pool(
+                    self.settings, keep_spare=True, fork=True
+                )
                 if old is not None:
                     old.close()
             self._pool.warm()
@@ -521,6 +593,8 @@ class Engine:
         elif self.progress is not None:
             state = self.progress.state(spec.id)
         counted = verdict.counts_as_attempt and not practice and self.settings.record
+        if self.progress is not None and self.settings.record and verdict.passed and not practice:
+            self._point("after", spec.id)  # `next` goes on from here (NextStep)
         explanation = self._explanation(spec, variant) if verdict.passed else None
         nudge = None
         if (
@@ -563,6 +637,7 @@ class Engine:
         """Mark the exercise given up (unless solved) and return its explanation."""
         self.exercise(exercise_id)
         self._store().give_up(exercise_id)
+        self._point("after", exercise_id)  # `next` goes on from here (NextStep)
         return self.explanation(exercise_id)
 
     def hint(self, exercise_id: str) -> Hint:
@@ -587,81 +662,157 @@ class Engine:
     def state(self, exercise_id: str) -> ExerciseState:
         return self._store().state(exercise_id)
 
-    def _open_ids(self) -> list[str]:
+    # The `next` pointer lives in the store's meta as JSON: {"mode": "goto", "exercise": X}
+    # (pose X, whatever its status) or {"mode": "after", "exercise": X} (X was just solved,
+    # given up or skipped: pose the next open exercise after it). Writing it never needs the
+    # chapter index, so `check` stays cheap; it is resolved only when `next` is asked.
+    _POINTER = "pointer"
+    _SKIPPED = "skipped"
+
+    def _pointer(self) -> tuple[str, str] | None:
+        import json
+
+        store = self._store()
+        raw = store.meta(self._POINTER)
+        if raw is not None:
+            try:
+                data = json.loads(raw)
+                return str(data["mode"]), str(data["exercise"])
+            except (ValueError, KeyError, TypeError):
+                return None
+        legacy = store.current()  # pinned by an older slamcourse: posed while open
+        return ("legacy", legacy) if legacy is not None else None
+
+    def _point(self, mode: str, exercise_id: str, **more: str | None) -> None:
+        import json
+
+        value = json.dumps({"mode": mode, "exercise": exercise_id})
+        self._store().set_meta({self._POINTER: value, "current": None, **more})
+
+    def skipped(self) -> list[str]:
+        """Exercises the learner skipped that are still open, in course order."""
+        import json
+
+        raw = self._store().meta(self._SKIPPED)
+        try:
+            ids = set(json.loads(raw)) if raw else set()
+        except ValueError:
+            ids = set()
+        return [e for e in self.course.exercise_ids if e in ids and e in self._open_set()]
+
+    def _open_set(self) -> set[str]:
         states = self._store().states()
-        return [
-            e
-            for e in self.course.exercise_ids
-            if states.get(e) is None or states[e].status == "pending"
-        ]
+        return {
+            e for e in self.course.exercise_ids if e not in states or states[e].status == "pending"
+        }
+
+    def _skipped_value(self, add: str | None = None, drop: str | None = None) -> str | None:
+        import json
+
+        raw = self._store().meta(self._SKIPPED)
+        try:
+            ids = set(json.loads(raw)) if raw else set()
+        except ValueError:
+            ids = set()
+        if add is not None:
+            ids.add(add)
+        if drop is not None:
+            ids.discard(drop)
+        return json.dumps(sorted(ids)) if ids else None
+
+    def next_step(self) -> NextStep:
+        """The exercise ``next`` poses (both faces ask this after every answer), with why."""
+        order = self.course.exercise_ids
+        states = self._store().states()
+
+        def status(e: str) -> str:
+            return states[e].status if e in states else "pending"
+
+        open_ids = {e for e in order if status(e) == "pending"}
+        pointer = self._pointer()
+        if pointer is not None and pointer[1] in order:
+            mode, at = pointer
+            if mode == "goto" or (mode == "legacy" and at in open_ids):
+                return NextStep(at, None, mode == "goto", status(at), False, (), False)
+            start = order.index(at)
+        else:
+            at, start = None, -1
+        skipped = set(self.skipped()) & open_ids
+        ahead = order[start + 1 :] + order[: start + 1]
+        passed: list[str] = []
+        for e in ahead:
+            if e in skipped:
+                passed.append(e)
+            elif e in open_ids:
+                return NextStep(
+                    e, at, False, "pending", order.index(e) <= start, tuple(passed), False
+                )
+        for e in ahead:
+            if e in skipped:
+                return NextStep(e, at, False, "pending", order.index(e) <= start, (), True)
+        return NextStep(None, at, False, "pending", False, (), False)
 
     def next_exercise(self) -> str | None:
-        """The pinned exercise if still open, else the first open one after it (wrapping)."""
-        open_ids = self._open_ids()
-        if not open_ids:
-            return None
-        current = self._store().current()
-        if current in open_ids:
-            return current
-        order = self.course.exercise_ids
-        if current in order:
-            start = order.index(current)
-            for ex in order[start + 1 :] + order[:start]:
-                if ex in open_ids:
-                    return ex
-        return open_ids[0]
+        """The exercise ``next`` poses (:meth:`next_step` without the why)."""
+        return self.next_step().exercise_id
 
-    def goto(self, exercise_id: str) -> None:
+    def goto(self, exercise_id: str) -> NextStep:
+        """Make ``exercise_id`` the exercise ``next`` poses, solved or not (no longer skipped)."""
         self.exercise(exercise_id)  # unknown ids are a usage error
-        self._store().set_current(exercise_id)
+        with self._nav_lock:
+            self._point(
+                "goto", exercise_id, **{self._SKIPPED: self._skipped_value(drop=exercise_id)}
+            )
+        return self.next_step()
 
     def skip(self, exercise_id: str) -> str | None:
-        """Move past ``exercise_id`` without solving it; returns the next open exercise."""
-        order = self.course.exercise_ids
-        open_ids = [e for e in self._open_ids() if e != exercise_id]
-        start = order.index(exercise_id) if exercise_id in order else -1
-        for ex in order[start + 1 :] + order[: start + 1]:
-            if ex in open_ids:
-                self._store().set_current(ex)
-                return ex
-        return None
+        """Move past ``exercise_id`` without solving it: it stays open, and ``next`` passes over
+        it (and says so) until only skipped exercises are left. Returns the next exercise."""
+        self.exercise(exercise_id)
+        with self._nav_lock:
+            self._point(
+                "after", exercise_id, **{self._SKIPPED: self._skipped_value(add=exercise_id)}
+            )
+        return self.next_exercise()
 
     def reset(self, exercise_id: str | None = None) -> None:
         if exercise_id is not None:
             self.exercise(exercise_id)
-        self._store().reset(exercise_id)
+        store = self._store()
+        with self._nav_lock:
+            store.reset(exercise_id)
+            if exercise_id is None:
+                store.set_meta({self._POINTER: None, self._SKIPPED: None})
+            else:
+                store.set_meta({self._SKIPPED: self._skipped_value(drop=exercise_id)})
 
     def summary(self) -> list[dict[str, Any]]:
-        """Per chapter: id, number, title, solved/total, and each exercise with its status."""
+        """Per chapter: id, number, title, solved/total, and each exercise with its status
+        (and whether it is skipped, and whether it is the one ``next`` poses).
+
+        Kept up to date, not recomputed (the browser asks for it with every answer): only the
+        chapters holding an exercise whose state changed since the last call
+        (:meth:`Progress.changes_since`), the old or new ``next`` exercise, or one newly skipped
+        or no longer skipped are rebuilt. Always equal to :meth:`summary_full`."""
+        current = self.next_exercise() if self.progress else None
+        skipped = frozenset(self.skipped()) if self.progress else frozenset()
+        return self._summary.get(self, current, skipped)
+
+    def summary_full(self) -> list[dict[str, Any]]:
+        """:meth:`summary` recomputed from every state (what the kept one is tested against)."""
         states = self._store().states() if self.progress else {}
         current = self.next_exercise() if self.progress else None
-        out = []
-        for ch in self.course.chapters:
-            rows = []
-            for ex in ch.exercises:
-                st = states.get(ex)
-                spec = self.exercise(ex)
-                rows.append(
-                    {
-                        "id": ex,
-                        "title": spec.title,
-                        "kind": spec.kind,
-                        "status": st.status if st else "pending",
-                        "attempts": st.attempts if st else 0,
-                        "current": ex == current,
-                    }
-                )
-            out.append(
-                {
-                    "id": ch.id,
-                    "title": ch.title,
-                    "number": ch.number,
-                    "exercises": rows,
-                    "solved": sum(r["status"] == "solved" for r in rows),
-                    "total": len(rows),
-                }
+        skipped = set(self.skipped()) if self.progress else set()
+        return [
+            _summary_chapter(
+                ch,
+                [
+                    _summary_row(self.exercise(ex), states.get(ex), ex == current, ex in skipped)
+                    for ex in ch.exercises
+                ],
             )
-        return out
+            for ch in self.course.chapters
+        ]
 
 
 def diagnostics(settings: Settings) -> dict[str, Any]:
@@ -700,3 +851,91 @@ def _tolerance(spec: ExerciseSpec) -> dict[str, Any] | None:
         "angle": bool(getattr(opts, "angle", False)),
         "exact": False,
     }
+
+
+# ------------------------------------------------------------------------------ the summary
+
+
+def _summary_row(
+    spec: ExerciseSpec, state: ExerciseState | None, current: bool, skipped: bool
+) -> dict[str, Any]:
+    """One exercise's row of :meth:`Engine.summary`."""
+    return {
+        "id": spec.id,
+        "title": spec.title,
+        "kind": spec.kind,
+        "status": state.status if state else "pending",
+        "attempts": state.attempts if state else 0,
+        "current": current,
+        "skipped": skipped,  # still open; `next` passes over it
+    }
+
+
+def _summary_chapter(chapter: Chapter, rows: list[dict[str, Any]]) -> dict[str, Any]:
+    """One chapter of :meth:`Engine.summary`."""
+    return {
+        "id": chapter.id,
+        "title": chapter.title,
+        "number": chapter.number,
+        "exercises": rows,
+        "solved": sum(r["status"] == "solved" for r in rows),
+        "total": len(rows),
+    }
+
+
+class _SummaryCache:
+    """:meth:`Engine.summary` kept from one call to the next.
+
+    It holds its own copy of the exercise states, brought up to date from the store's changes
+    since the revision it last saw (all of them when the store says its list is complete: the
+    first call, a reset of everything, a write by another process), and the chapters last
+    built. A call rebuilds only the chapters showing something that changed: an exercise's
+    state, the ``next`` exercise (its old and new chapter), a skipped mark. A rebuilt chapter
+    is a new dict (one already handed out never changes) and every caller gets copies, so
+    callers on several threads neither see each other's changes nor can spoil the cache.
+    """
+
+    def __init__(self) -> None:
+        self._lock = threading.Lock()
+        self._revision: int | None = None
+        self._states: dict[str, ExerciseState] = {}
+        self._chapters: list[dict[str, Any]] = []
+        self._index: dict[str, int] = {}  # exercise id -> the index of its chapter
+        self._current: str | None = None
+        self._skipped: frozenset[str] = frozenset()
+
+    def get(
+        self, engine: Engine, current: str | None, skipped: frozenset[str]
+    ) -> list[dict[str, Any]]:
+        chapters = engine.course.chapters
+        revision: int | None
+        states: dict[str, ExerciseState]
+        with self._lock:
+            if engine.progress is None:
+                revision, states, complete = None, {}, True
+            else:
+                revision, states, complete = engine.progress.changes_since(self._revision)
+            if complete or len(self._chapters) != len(chapters):
+                self._states = dict(states)
+                self._index = {ex: i for i, ch in enumerate(chapters) for ex in ch.exercises}
+                dirty = set(range(len(chapters)))
+                built: list[dict[str, Any]] = [{} for _ in chapters]
+            else:
+                self._states.update(states)
+                touched = set(states) | (self._skipped ^ skipped)
+                if current != self._current:
+                    touched.update(e for e in (self._current, current) if e is not None)
+                dirty = {self._index[e] for e in touched if e in self._index}
+                built = list(self._chapters)
+            for i in dirty:
+                chapter = chapters[i]
+                rows = [
+                    _summary_row(
+                        engine.exercise(ex), self._states.get(ex), ex == current, ex in skipped
+                    )
+                    for ex in chapter.exercises
+                ]
+                built[i] = _summary_chapter(chapter, rows)
+            self._chapters, self._revision = built, revision
+            self._current, self._skipped = current, skipped
+        return [{**ch, "exercises": [dict(r) for r in ch["exercises"]]} for ch in built]

@@ -15,6 +15,12 @@ pending again, with zero attempts and hints) but never deletes attempts. Instead
 shows the whole history and each :class:`Attempt` says whether (and when) it was reset
 (:attr:`Attempt.reset_at`). Nothing a learner typed is ever thrown away by slamcourse itself.
 
+Reading states costs no query: the store keeps an in-memory copy of ``exercise_state``, updated
+entry by entry by its own writes (after they commit) and read again whole when another
+connection committed (``PRAGMA data_version``), e.g. the terminal while the browser face runs.
+:meth:`Progress.changes_since` tells a reader which exercises changed since it last looked, so
+the engine's summary is kept up to date instead of recomputed on every answer.
+
 Robustness: the schema is versioned with ``PRAGMA user_version`` and upgraded by the ordered
 steps in ``_MIGRATIONS``; every write runs in one ``BEGIN IMMEDIATE`` transaction; a file that is
 not a readable progress database, or was written by a newer slamcourse, is reported as a
@@ -114,6 +120,7 @@ class _SQL:
     foreign_keys_on = "PRAGMA foreign_keys = ON"
     begin = "BEGIN IMMEDIATE"
     count_schema_objects = "SELECT count(*) FROM sqlite_master"
+    data_version = "PRAGMA data_version"
 
     get_meta = "SELECT value FROM meta WHERE key = ?"
     set_meta = (
@@ -350,6 +357,16 @@ class Progress:
         self._conn: sqlite3.Connection | None = conn
         self._learner_seed = learner_seed
         self._lock = threading.RLock()
+        # An in-memory copy of ``exercise_state`` (None: not read yet), so reading states costs
+        # no query. This connection's own writes update it entry by entry after they commit;
+        # a commit by any other connection (the terminal while the browser face runs, another
+        # store on the same file) changes ``PRAGMA data_version``, and it is read again whole.
+        self._mirror: dict[str, ExerciseState] | None = None
+        self._data_version = -1
+        self._revision = 0  # grows with every change of the mirror (see changes_since)
+        self._complete_at = 0  # the revision of the last whole read (or reset of everything)
+        self._changed_at: dict[str, int] = {}  # exercise id -> revision of its last change
+        self._staged: list[tuple[str | None, ExerciseState | None]] | None = None
 
     # -- opening ---------------------------------------------------------------------------
 
@@ -462,15 +479,60 @@ class Progress:
 
     @contextmanager
     def _write(self) -> Iterator[sqlite3.Connection]:
-        """One transaction: committed if the block succeeds, rolled back otherwise."""
+        """One transaction: committed if the block succeeds, rolled back otherwise. The states
+        the block staged (:meth:`_stage`) reach the mirror only once it committed, under the
+        same hold of the lock, so the mirror follows the commits in their order."""
         with self._lock:
             conn = self._db()
+            staged: list[tuple[str | None, ExerciseState | None]] = []
+            self._staged = staged
             try:
                 with conn:
                     conn.execute(_SQL.begin)
                     yield conn
             except sqlite3.Error as exc:
                 raise _translate(self._path, exc) from exc
+            finally:
+                self._staged = None
+            for exercise_id, state in staged:
+                self._apply(exercise_id, state)
+
+    def _stage(self, exercise_id: str | None, state: ExerciseState | None) -> None:
+        """Inside :meth:`_write`: once committed, ``exercise_id``'s state is ``state`` (None:
+        no row, i.e. fresh); ``exercise_id`` None: every row was deleted."""
+        assert self._staged is not None, "_stage outside a write"
+        self._staged.append((exercise_id, state))
+
+    def _apply(self, exercise_id: str | None, state: ExerciseState | None) -> None:
+        self._revision += 1
+        if exercise_id is None:  # every state deleted
+            if self._mirror is not None:
+                self._mirror = {}
+            self._complete_at = self._revision
+            self._changed_at.clear()
+            return
+        if self._mirror is not None:
+            if state is None:
+                self._mirror.pop(exercise_id, None)
+            else:
+                self._mirror[exercise_id] = state
+        self._changed_at[exercise_id] = self._revision
+
+    def _synced(self, conn: sqlite3.Connection) -> dict[str, ExerciseState]:
+        """The mirror, read again whole if it was never read or another connection committed
+        since (``PRAGMA data_version`` is read first, so a commit racing the read only causes
+        one more read next time). Call with the lock held."""
+        version = int(conn.execute(_SQL.data_version).fetchone()[0])
+        if self._mirror is None or version != self._data_version:
+            self._mirror = {
+                state.exercise_id: state
+                for state in map(self._row_to_state, conn.execute(_SQL.all_states))
+            }
+            self._data_version = version
+            self._revision += 1
+            self._complete_at = self._revision
+            self._changed_at.clear()
+        return self._mirror
 
     def close(self) -> None:
         """Close the database. Safe to call twice."""
@@ -531,15 +593,33 @@ class Progress:
     def state(self, exercise_id: str) -> ExerciseState:
         """The learner's state on ``exercise_id`` (pending with zeros if never touched)."""
         with self._read() as conn:
-            return self._fetch_state(conn, exercise_id)
+            state = self._synced(conn).get(exercise_id)
+        return ExerciseState.fresh(exercise_id) if state is None else state
 
     def states(self) -> dict[str, ExerciseState]:
-        """The state of every exercise touched since its last reset, by exercise id."""
+        """The state of every exercise touched since its last reset, by exercise id (ordered by
+        id; a new dict each call)."""
         with self._read() as conn:
-            return {
-                state.exercise_id: state
-                for state in map(self._row_to_state, conn.execute(_SQL.all_states))
-            }
+            mirror = self._synced(conn)
+            return {key: mirror[key] for key in sorted(mirror)}
+
+    def changes_since(self, revision: int | None) -> tuple[int, dict[str, ExerciseState], bool]:
+        """What changed since ``revision`` (a value this method returned; None: nothing known
+        yet), for a reader that keeps its own copy up to date (the engine's summary):
+        ``(new revision, states, complete)``. ``complete``: ``states`` is every state (an
+        exercise not in it is fresh), as :meth:`states` returns; else ``states`` holds only
+        the exercises changed since ``revision``, each at its state now (fresh if reset)."""
+        with self._read() as conn:
+            mirror = self._synced(conn)
+            now = self._revision
+            if revision is None or revision < self._complete_at or revision > now:
+                return now, {key: mirror[key] for key in sorted(mirror)}, True
+            changed = sorted(e for e, at in self._changed_at.items() if at > revision)
+            return (
+                now,
+                {e: mirror.get(e) or ExerciseState.fresh(e) for e in changed},
+                False,
+            )
 
     def record_attempt(
         self,
@@ -579,7 +659,9 @@ class Progress:
                 return self._fetch_state(conn, exercise_id)
             conn.execute(_SQL.ensure_state, (exercise_id, now))
             conn.execute(_SQL.apply_attempt, (counted, int(verdict.passed), now, exercise_id))
-            return self._fetch_state(conn, exercise_id)
+            state = self._fetch_state(conn, exercise_id)
+            self._stage(exercise_id, state)
+            return state
 
     def reveal_hint(self, exercise_id: str) -> int:
         """Count one more hint shown for ``exercise_id``; return the new number of hints shown."""
@@ -587,7 +669,9 @@ class Progress:
         with self._write() as conn:
             conn.execute(_SQL.ensure_state, (exercise_id, now))
             conn.execute(_SQL.add_hint, (now, exercise_id))
-            return self._fetch_state(conn, exercise_id).hints_shown
+            state = self._fetch_state(conn, exercise_id)
+            self._stage(exercise_id, state)
+            return state.hints_shown
 
     def give_up(self, exercise_id: str) -> ExerciseState:
         """Mark ``exercise_id`` as given up (unless already solved); return the new state.
@@ -599,7 +683,9 @@ class Progress:
         with self._write() as conn:
             conn.execute(_SQL.ensure_state, (exercise_id, now))
             conn.execute(_SQL.give_up, (now, exercise_id))
-            return self._fetch_state(conn, exercise_id)
+            state = self._fetch_state(conn, exercise_id)
+            self._stage(exercise_id, state)
+            return state
 
     # -- current exercise --------------------------------------------------------------------
 
@@ -616,6 +702,25 @@ class Progress:
                 conn.execute(_SQL.del_meta, (_META_CURRENT,))
             else:
                 conn.execute(_SQL.set_meta, (_META_CURRENT, exercise_id))
+
+    # -- engine-owned values (navigation: the `next` pointer, skipped exercises) ---------------
+
+    def meta(self, key: str) -> str | None:
+        """A value the engine keeps in ``meta`` (e.g. its ``next`` pointer), or ``None``."""
+        with self._read() as conn:
+            row = conn.execute(_SQL.get_meta, (key,)).fetchone()
+        return None if row is None else str(row[0])
+
+    def set_meta(self, values: dict[str, str | None]) -> None:
+        """Set (``None``: delete) values in ``meta``, in one transaction; never the seed."""
+        if _META_SEED in values:
+            raise ValueError("the learner seed is never rewritten")
+        with self._write() as conn:
+            for key, value in values.items():
+                if value is None:
+                    conn.execute(_SQL.del_meta, (key,))
+                else:
+                    conn.execute(_SQL.set_meta, (key, value))
 
     # -- reset and history -------------------------------------------------------------------
 
@@ -635,6 +740,7 @@ class Progress:
             else:
                 conn.execute(_SQL.reset_attempts_one, (reset_id, exercise_id))
                 conn.execute(_SQL.delete_state_one, (exercise_id,))
+            self._stage(exercise_id, None)
 
     def attempts(self, exercise_id: str | None = None, limit: int | None = None) -> list[Attempt]:
         """Logged attempts, oldest first, including those cleared by a reset.

@@ -15,7 +15,7 @@ from pathlib import Path
 
 from slamcourse.course import templates, variants
 from slamcourse.course.loader import Course, load_course
-from slamcourse.course.model import ExerciseSpec
+from slamcourse.course.model import ExerciseSpec, Text
 from slamcourse.errors import CourseError, GraderError, Problem, UsageError, relpath
 from slamcourse.kinds import get_kind
 
@@ -297,8 +297,9 @@ def validate_exercise(
     for seed in seeds:
         try:
             variant = variants.variant(spec, seed)
-            _render_all(spec, variant.params, kind.expected(spec, variant))
-            found = kind.self_test(spec, variant) + kind.example_problems(spec, variant)
+            found = template_problems(spec, variant.params, kind.expected(spec, variant))
+            if not found:  # the kinds render these same texts while they check
+                found = kind.self_test(spec, variant) + kind.example_problems(spec, variant)
         except CourseError as exc:
             found = exc.problems
         except GraderError as exc:  # e.g. the reference fails on an input the strategy drew
@@ -397,10 +398,64 @@ def record_inputs(spec: ExerciseSpec) -> list[dict[str, object]]:
     return inputs
 
 
-def _render_all(spec: ExerciseSpec, params: dict[str, object], answer: object) -> None:
-    templates.render(spec, spec.prompt, dict(params))
-    templates.render(spec, spec.explanation, {**params, "answer": answer})
-    for hint in spec.hints:
-        templates.render(spec, hint, dict(params))
-    for m in spec.misconceptions:
-        templates.render(spec, m.message, dict(params))
+def course_texts(
+    spec: ExerciseSpec, params: dict[str, object], answer: object
+) -> list[tuple[str, Text, dict[str, object]]]:
+    """Every template of an exercise a learner may see, with what it is rendered with: the
+    prompt, the hints, the explanation (which also sees ``answer``), the misconceptions'
+    messages, and a choice's options and their feedback or an order's steps and messages."""
+    texts: list[tuple[str, Text, dict[str, object]]] = [
+        ("prompt", spec.prompt, dict(params)),
+        *[("hint", hint, dict(params)) for hint in spec.hints],
+        ("explanation", spec.explanation, {**params, "answer": answer}),
+    ]
+    # a code exercise's message is shown for any input, so it sees no parameters
+    message_params = {} if spec.kind == "code" else dict(params)
+    texts += [("message", m.message, message_params) for m in spec.misconceptions]
+    if spec.kind in ("choice", "multi"):
+        for c in spec.options.choices:
+            texts.append(("option", Text(c.text, c.text_line or c.line), dict(params)))
+            if c.feedback:
+                line = c.feedback_line or c.line
+                texts.append(("option feedback", Text(c.feedback, line), dict(params)))
+    elif spec.kind == "order":
+        for item in spec.options.items:
+            texts.append(("step", Text(item.text, item.line), dict(params)))
+        for iid, message in spec.options.feedback.items():
+            line = spec.options.feedback_lines.get(iid, spec.line)
+            texts.append(("step feedback", Text(message, line), dict(params)))
+    return texts
+
+
+_LEFT_OVER = re.compile(r"\{\{|\{%")
+
+
+def template_problems(
+    spec: ExerciseSpec, params: dict[str, object], answer: object
+) -> list[Problem]:
+    """Render every template of the exercise (:func:`course_texts`) with this variant's
+    parameters: a template that fails, or whose output still holds ``{{`` or ``{%`` (a tag
+    that was never rendered), is a problem at its line."""
+    found: list[Problem] = []
+    for what, text, context in course_texts(spec, params, answer):
+        where = f"template error in the {what}"
+        try:
+            out = templates.render(spec, text, context)
+        except CourseError as exc:
+            found += [
+                Problem(p.path, p.line, p.message.replace("template error", where, 1))
+                for p in exc.problems
+            ]
+            continue
+        left = _LEFT_OVER.search(out)
+        if left:
+            found.append(
+                Problem(
+                    relpath(spec.path, spec.course_root),
+                    text.line,
+                    f"the rendered {what} still holds '{left.group(0)}' "
+                    f"(…{out[max(0, left.start() - 20) : left.end() + 20]}…): a template "
+                    "tag that is not rendered; check its braces",
+                )
+            )
+    return found

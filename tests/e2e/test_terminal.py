@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import io
 import os
 import sys
 from pathlib import Path
@@ -116,20 +117,88 @@ def test_code_exercise_in_next(private_home: Path) -> None:
 
 def test_watch_regrades_on_save(private_home: Path) -> None:
     child = spawn(private_home, "--course", str(FIXTURE_COURSE), "watch", "basics/range-bearing")
+    child.logfile_read = log = io.StringIO()
     child.expect(r"Watching (\S+\.py)")
     path = Path(child.match.group(1))
+    child.expect_exact("`slamcourse hint basics/range-bearing` in another terminal")
     child.expect_exact("NotImplementedError")  # the starter, graded at once
     path.write_text(
         "import math\n\ndef range_bearing(dx, dy, theta):\n"
         "    return dx * dx + dy * dy, math.atan2(dy, dx) - theta\n"
     )
-    child.expect(r"changed \((inotify|changed)\)")
+    # in the learner's words, not the mechanism's ("changed (inotify)")
+    child.expect_exact("range_bearing.py saved; checking again…")
     child.expect_exact("squared range")  # the misconception, named
+    # the second miss nudges towards the hints with a command watch's terminal can run (watch
+    # reads no `:hint`)
+    child.expect_exact("Stuck? A hint is available.")
+    child.expect(r"Type `([^`]*)`")
+    assert child.match.group(1) == "slamcourse hint basics/range-bearing"
     path.write_text(
         "import math\n\ndef range_bearing(dx, dy, theta):\n"
         "    return math.hypot(dx, dy), math.atan2(dy, dx) - theta\n"
     )
     child.expect_exact("✓ passed")
+    child.expect(pexpect.EOF)
+    child.close()
+    assert child.exitstatus == 0
+    assert "inotify" not in log.getvalue() and ":hint" not in log.getvalue()
+
+
+def _fixture_engine(home: Path):  # type: ignore[no-untyped-def]
+    from slamcourse.engine import Engine
+    from slamcourse.settings import Settings
+
+    return Engine.open(Settings.from_env(course=FIXTURE_COURSE, home=home))
+
+
+def test_goto_a_solved_exercise_says_so_and_next_poses_it(private_home: Path) -> None:
+    with _fixture_engine(private_home) as engine:
+        assert engine.submit("basics/bug", "3").passed
+    goto = spawn(private_home, "--course", str(FIXTURE_COURSE), "goto", "basics/bug")
+    goto.expect_exact("`slamcourse next` will pose basics/bug.")
+    goto.expect_exact("already solved", timeout=10)
+    goto.expect(pexpect.EOF)
+    child = spawn(private_home, "--course", str(FIXTURE_COURSE), "next", "--no-context")
+    child.expect_exact("already solved", timeout=10)
+    child.expect_exact("Find the bug", timeout=10)  # what goto said: the solved exercise
+    child.expect_exact("answer> ")
+    child.sendline("3")
+    child.expect_exact("✓ passed")
+    child.expect_exact("Enter for the next exercise")
+    child.sendline("")
+    child.expect_exact("Write range_bearing", timeout=10)  # then on from it, in its chapter
+    child.expect_exact("check> ")
+    child.sendline(":quit")
+    child.expect(pexpect.EOF)
+
+
+def test_next_says_which_skipped_exercises_it_passes_over(private_home: Path) -> None:
+    with _fixture_engine(private_home) as engine:
+        engine.skip("basics/distance")
+        engine.give_up("boundaries/read-edges")  # the last one: next wraps, past the skipped
+    child = spawn(private_home, "--course", str(FIXTURE_COURSE), "next", "--no-context")
+    child.expect_exact("Passing over 1 skipped exercise: `basics/distance`.", timeout=10)
+    child.expect_exact("back to the earliest open one, `basics/heading`.", timeout=10)
+    child.expect_exact("A heading")
+    child.expect_exact("answer> ")
+    child.sendline(":skip")
+    child.expect_exact("`next` comes back to it when the rest are done", timeout=10)
+    child.expect_exact("A count")
+    child.sendline(":quit")
+    child.expect(pexpect.EOF)
+
+
+def test_list_marks_have_a_legend(private_home: Path) -> None:
+    with _fixture_engine(private_home) as engine:
+        assert engine.submit("basics/bug", "3").passed
+        engine.give_up("basics/count")
+        engine.skip("basics/heading")
+    child = spawn(private_home, "--course", str(FIXTURE_COURSE), "list")
+    child.expect(r"↷ basics/heading\s+A heading", timeout=10)
+    child.expect(r"⚐ basics/count\s+A count", timeout=10)  # given up: the browser's mark too
+    child.expect(r"✓ basics/bug\s+Find the bug\r\n", timeout=10)
+    child.expect_exact("✓ solved   ⚐ given up   ○ open   ↷ skipped   ← next:", timeout=10)
     child.expect(pexpect.EOF)
     child.close()
     assert child.exitstatus == 0

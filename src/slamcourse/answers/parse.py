@@ -208,8 +208,10 @@ def _unit_of(text: str) -> tuple[str, str] | None:
     return None
 
 
-def _scalar(text: str, where: str, form: str) -> float:
-    """One number; ``where`` prefixes messages (``"entry 2 ('x'): "``), ``form`` ends them."""
+def _scalar(text: str, where: str, form: str, units: str = "") -> float:
+    """One number; ``where`` prefixes messages (``"entry 2 ('x'): "``), ``form`` ends them.
+    ``units``: the unit the exercise asks for; written after the number, it is accepted and
+    changes nothing (``98.6%`` is 98.6 where the answer is in %). Any other unit is refused."""
     s = _clean(text)
     if not s:
         raise AnswerFormatError(
@@ -225,7 +227,9 @@ def _scalar(text: str, where: str, form: str) -> float:
     if not where and _DECIMAL_COMMA.fullmatch(s):
         raise AnswerFormatError("use a point as the decimal separator: 0.5, not 0,5")
     with_unit = _unit_of(s)
-    if with_unit is not None:
+    if with_unit is not None and units and with_unit[1] == units.strip():
+        s = with_unit[0]
+    elif with_unit is not None:
         value, _unit = with_unit
         raise AnswerFormatError(
             f"{where}write the number without its unit: {_snippet(value)}, not {_snippet(s)}"
@@ -257,20 +261,22 @@ def _check_single(s: str, where: str) -> None:
         raise AnswerFormatError(f"{where}a trailing '{s.rstrip()[-1]}' — give a single value")
 
 
-def parse_number(text: str) -> float:
+def parse_number(text: str, units: str = "") -> float:
     """Read one finite number.
 
     Forms: ``42``, ``-0.09``, ``1.5e-3``, ``7/5``, ``pi/4``, ``sqrt(2)/2``, ``2π``, ``−1`` (unicode
     minus); surrounding whitespace is ignored. Specific messages for an empty answer, several
     numbers (``0.3 -0.09``), degrees (``45°``), units (``5 m``), a decimal comma (``0,5``) and
-    ``nan``/``inf``.
+    ``nan``/``inf``. With ``units`` (the exercise's declared unit, e.g. ``%``), that unit may
+    follow the number and means the number as written: ``98.6%`` and ``98.6 %`` are 98.6.
     """
-    return _scalar(decode_answer(text), "", NUMBER_FORM)
+    return _scalar(decode_answer(text), "", NUMBER_FORM, units)
 
 
-def parse_integer(text: str) -> int:
-    """Read a whole number: ``9``, ``9.0``, ``1e3``, ``18/2`` (within 1e-9 of an integer)."""
-    value = _scalar(decode_answer(text), "", INTEGER_FORM)
+def parse_integer(text: str, units: str = "") -> int:
+    """Read a whole number: ``9``, ``9.0``, ``1e3``, ``18/2`` (within 1e-9 of an integer);
+    ``units`` as for :func:`parse_number`."""
+    value = _scalar(decode_answer(text), "", INTEGER_FORM, units)
     nearest = round(value)
     if abs(value - nearest) > 1e-9:
         raise AnswerFormatError(f"expected a whole number such as 9, got {format_number(value)}")

@@ -14,12 +14,12 @@ from dataclasses import dataclass
 from typing import Any, ClassVar
 
 from slamcourse.answers import parse_ids
-from slamcourse.course.model import ExerciseSpec, Variant
+from slamcourse.course.model import ExerciseSpec, Text, Variant
 from slamcourse.course.schema import Checker
 from slamcourse.course.yamlio import LineDict, LineList
 from slamcourse.errors import AnswerFormatError, Problem
-from slamcourse.kinds.base import Kind, call_reference, course_error, problem
-from slamcourse.verdict import Verdict
+from slamcourse.kinds.base import Kind, call_reference, course_error, problem, render
+from slamcourse.verdict import Verdict, literal
 
 LETTERS = "abcdefghijklmnopqrstuvwxyz"
 
@@ -39,10 +39,20 @@ def position_labels(ids: Sequence[str]) -> list[str] | None:
 @dataclass(frozen=True)
 class Choice:
     id: str
-    text: str
+    text: str  # templates (Markdown), rendered with the variant's parameters when shown
     correct: bool
     feedback: str
     line: int
+    text_line: int = 0  # where the text and the feedback start (0: at ``line``)
+    feedback_line: int = 0
+
+    def shown_text(self, spec: ExerciseSpec, variant: Variant) -> str:
+        """The option's text for this variant (course text: Markdown)."""
+        return render(spec, Text(self.text, self.text_line or self.line), variant)
+
+    def shown_feedback(self, spec: ExerciseSpec, variant: Variant) -> str:
+        """The option's feedback for this variant, rendered like a prompt (course text)."""
+        return render(spec, Text(self.feedback, self.feedback_line or self.line), variant)
 
 
 @dataclass(frozen=True)
@@ -86,6 +96,7 @@ class ChoiceKind(Kind):
                 check.add(line, f"choice id '{cid}' must be letters or digits (learners type it)")
             if cid in [c.id for c in choices]:
                 check.add(line, f"choice id '{cid}' is used twice")
+            lines = data if isinstance(data, LineDict) else None
             choices.append(
                 Choice(
                     cid,
@@ -93,6 +104,8 @@ class ChoiceKind(Kind):
                     bool(check.typed(data, "correct", bool, False)),
                     str(check.typed(data, "feedback", str, "")),
                     line,
+                    lines.text_line("text") if lines is not None else 0,
+                    lines.text_line("feedback") if lines is not None else 0,
                 )
             )
         if len(choices) < 2:
@@ -160,7 +173,10 @@ class ChoiceKind(Kind):
         return [label for label, c in self.shown(spec, variant) if c.id in right]
 
     def form(self, spec: ExerciseSpec, variant: Variant) -> dict[str, Any]:
-        options = [{"id": label, "text": c.text} for label, c in self.shown(spec, variant)]
+        options = [
+            {"id": label, "text": c.shown_text(spec, variant)}
+            for label, c in self.shown(spec, variant)
+        ]
         return {"type": self.name, "options": options}
 
     def how_to_answer(self, spec: ExerciseSpec, variant: Variant) -> str:
@@ -197,9 +213,10 @@ class ChoiceKind(Kind):
         if len(picked) != 1:
             return Verdict.unreadable(f"choose exactly one option (you gave {len(picked)})")
         label, choice = picked[0]
-        if [choice.id] == self.expected(spec, variant):
-            return Verdict.ok(f"Correct. {choice.feedback}".strip())
-        return Verdict.wrong(f"Not quite. {choice.feedback}".strip(), picked=[label])
+        said = choice.shown_feedback(spec, variant)
+        if [choice.id] == self.expected(spec, variant):  # the face says "correct": not twice
+            return Verdict.ok(said or "That is the right option.")
+        return Verdict.wrong(f"Not quite. {said}".strip(), picked=[label])
 
     def self_test(self, spec: ExerciseSpec, variant: Variant) -> list[Problem]:
         right = self.shown_answer(spec, variant)
@@ -228,17 +245,19 @@ class MultiKind(ChoiceKind):
         hits = len([c for _, c in picked if c.id in right])
         score = max(0.0, (hits - len(wrong_picks)) / len(right))
         if not wrong_picks and hits == len(right):
-            return Verdict.ok("Correct: exactly the right options.")
+            return Verdict.ok("Exactly the right options.")
         parts = [f"Not quite ({hits} of {len(right)} right options picked)."]
-        for label, c in wrong_picks:
-            parts.append(f"{label}) does not apply. {c.feedback}".strip())
+        for label, c in wrong_picks:  # one paragraph each; `1)` is no list item
+            parts.append(
+                f"{literal(label + ')')} does not apply. {c.shown_feedback(spec, variant)}".strip()
+            )
         missing = len(right) - hits
         if missing:
             parts.append(
                 f"{missing} option{'s' if missing > 1 else ''} that appl"
                 f"{'y' if missing > 1 else 'ies'} {'are' if missing > 1 else 'is'} missing."
             )
-        return Verdict.wrong(" ".join(parts), score=score, picked=[label for label, _ in picked])
+        return Verdict.wrong("\n\n".join(parts), score=score, picked=[label for label, _ in picked])
 
     def self_test(self, spec: ExerciseSpec, variant: Variant) -> list[Problem]:
         right = self.shown_answer(spec, variant)

@@ -20,7 +20,7 @@ from slamcourse.course.schema import Checker
 from slamcourse.course.yamlio import LineDict, LineList
 from slamcourse.errors import Problem
 from slamcourse.kinds.base import Kind, problem, render
-from slamcourse.verdict import Verdict
+from slamcourse.verdict import Verdict, capitalised, engine_text, literal
 
 CODE_TOLERANCE = Tolerance(rtol=1e-6, atol=1e-9)
 MAX_SOURCE_BYTES = 256 * 1024
@@ -436,16 +436,16 @@ class CodeKind(Kind):
             )
         if failure.kind == "raised":
             where = "".join(f"\n- `{filename}:{f.line}`: `{f.text}`" for f in failure.frames[-3:])
-            text = f"`{call_text}` raised {_sentence(failure.message)}" + (
+            text = f"`{call_text}` raised {_sentence(literal(failure.message))}" + (
                 f"\n{where}" if where else ""
             )
         elif failure.kind == "mutated":
-            text = f"`{call_text}`: {_sentence(failure.message)}"
+            text = f"`{call_text}`: {_sentence(engine_text(failure.message))}"
         else:
             want_text, got_text = show_pair(to_plain(failure.expected), failure.got)
             text = f"Wrong result for `{call_text}`: expected `{want_text}`, got `{got_text}`."
             if not _restates_values(failure.message):  # where (an entry), what kind, a shape
-                text += f" {_sentence(failure.message)}"
+                text += f" {_sentence(engine_text(failure.message))}"
         tried = f"{outcome.examples} test input{'s' if outcome.examples != 1 else ''}"
         if shrunk:
             text += f"\n\nThe grader shrank the failure to this small input ({tried} run)."
@@ -720,20 +720,25 @@ def _load_verdict(loaded: Any, filename: str, opts: CodeOptions) -> Verdict:
     if status == "missing_function":
         found = f" (it defines {', '.join(loaded.found)})" if loaded.found else ""
         return Verdict.unreadable(
-            f"{filename} has no function {opts.function}{found}; write `{sig}:`"
+            f"{filename} has no function `{opts.function}`{found}; write `{sig}:`"
         )
     if status == "not_callable":
         return Verdict.unreadable(
-            f"{opts.function} in {filename} is not a function; write `{sig}:`"
+            f"`{opts.function}` in {filename} is not a function; write `{sig}:`"
         )
     if status == "signature":
         return Verdict.unreadable(
-            f"{opts.function} must take {len(opts.signature)} parameters "
+            f"`{opts.function}` must take {len(opts.signature)} parameters "
             f"({', '.join(opts.signature)}); {loaded.message}".rstrip("; ")
         )
     if status == "import_error":
-        where = "".join(f"\n  {filename}:{f.line}: {f.text}" for f in loaded.frames[-3:])
-        return Verdict.wrong(f"{filename} raised while it was loaded: {loaded.message}{where}")
+        where = "".join(
+            f"\n  {literal(filename)}:{f.line}: {literal(f.text, line_start=False)}"
+            for f in loaded.frames[-3:]
+        )
+        return Verdict.wrong(
+            f"{literal(filename)} raised while it was loaded: {literal(loaded.message)}{where}"
+        )
     if status == "timeout":
         return Verdict(
             "timeout",
@@ -741,7 +746,9 @@ def _load_verdict(loaded: Any, filename: str, opts: CodeOptions) -> Verdict:
             f"{filename} did not finish loading in time: is there a "
             "loop at the top level of the file?",
         )
-    return Verdict.wrong(f"{filename} stopped the grader's worker while loading: {loaded.message}")
+    return Verdict.wrong(
+        f"{literal(filename)} stopped the grader's worker while loading: {literal(loaded.message)}"
+    )
 
 
 def _parse_limits(raw: LineDict, check: Checker) -> tuple[tuple[str, float], ...]:
@@ -860,10 +867,11 @@ def _is_value(text: str) -> bool:
 
 
 def _sentence(text: str) -> str:
+    """A sentence: capitalised unless it starts with code or a file name, with a full stop."""
     text = text.strip()
     if not text:
         return ""
-    return text[0].upper() + text[1:] + ("" if text.endswith((".", "!", "?")) else ".")
+    return capitalised(text) + ("" if text.endswith((".", "!", "?")) else ".")
 
 
 def _plain(data: Any) -> Any:

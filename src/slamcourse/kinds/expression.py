@@ -133,7 +133,7 @@ class ExpressionKind(Kind):
         bad = self._matches(spec, got, want)
         if bad is None:
             return Verdict.ok(
-                f"Correct: your formula agrees with the reference at all {opts.points} test points."
+                f"Your formula agrees with the reference at all {opts.points} test points."
             )
         for m in spec.misconceptions:
             assert m.compute is not None

@@ -93,7 +93,7 @@ class LineKind(Kind):
         if not 1 <= number <= opts.count:
             return Verdict.unreadable(f"the listing has lines 1 to {opts.count}")
         if number == opts.answer:
-            return Verdict.ok(f"Correct: line {number} holds the bug.")
+            return Verdict.ok(f"Line {number} holds the bug.")
         if number in opts.lines:
             return Verdict.wrong(f"Not line {number}. {opts.lines[number]}", line=number)
         return Verdict.wrong(

@@ -126,18 +126,22 @@ class NumberKind(Kind):
     def check(self, spec: ExerciseSpec, variant: Variant, answer: str) -> Verdict:
         opts: NumericOptions = spec.options
         try:
-            got = float(parse_integer(answer)) if opts.exact else parse_number(answer)
+            got = (
+                float(parse_integer(answer, opts.units))
+                if opts.exact
+                else parse_number(answer, opts.units)
+            )
         except AnswerFormatError as exc:
             return Verdict.unreadable(str(exc))
         want = self.expected(spec, variant)
         units = f" {opts.units}" if opts.units else ""
         if self.accepts(spec, got, want):
             if opts.exact:
-                return Verdict.ok(f"Correct: {format_number(want)}{units}.", expected=want)
+                return Verdict.ok(f"Exactly {format_number(want)}{units}.", expected=want)
             lo, hi = tolerance_window(want, spec.tolerance.rtol, spec.tolerance.atol)
             mod = " (modulo 2π)" if opts.angle else ""
             return Verdict.ok(
-                f"Correct. The reference value is {format_number(want)}{units}; answers from "
+                f"The reference value is {format_number(want)}{units}; answers from "
                 f"{format_number(lo)} to {format_number(hi)}{mod} are accepted.",
                 expected=want,
                 window=[lo, hi],
@@ -296,7 +300,7 @@ class VectorKind(Kind):
             )
         if result.ok:
             return Verdict.ok(
-                f"Correct. Accepted {describe_tolerance(spec.tolerance, spec.options.exact)} "
+                f"Accepted {describe_tolerance(spec.tolerance, spec.options.exact)} "
                 "entry by entry.",
                 expected=want,
             )

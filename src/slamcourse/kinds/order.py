@@ -9,15 +9,15 @@ from __future__ import annotations
 
 import bisect
 import random
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any, ClassVar
 
 from slamcourse.answers import parse_ids
-from slamcourse.course.model import ExerciseSpec, Variant
+from slamcourse.course.model import ExerciseSpec, Text, Variant
 from slamcourse.course.schema import Checker
 from slamcourse.course.yamlio import LineDict, LineList
 from slamcourse.errors import AnswerFormatError, Problem
-from slamcourse.kinds.base import Kind, problem
+from slamcourse.kinds.base import Kind, problem, render
 from slamcourse.kinds.choice import position_labels
 from slamcourse.verdict import Verdict
 
@@ -25,14 +25,24 @@ from slamcourse.verdict import Verdict
 @dataclass(frozen=True)
 class Item:
     id: str
-    text: str
+    text: str  # a template (Markdown), rendered with the variant's parameters when shown
     line: int
 
 
 @dataclass(frozen=True)
 class OrderOptions:
     items: tuple[Item, ...]  # in the correct order
-    feedback: dict[str, str]
+    feedback: dict[str, str]  # item id -> a template (Markdown)
+    feedback_lines: dict[str, int] = field(default_factory=dict)  # item id -> its line
+
+    def item_text(self, spec: ExerciseSpec, variant: Variant, item: Item) -> str:
+        """An item's text for this variant (course text: Markdown)."""
+        return render(spec, Text(item.text, item.line), variant)
+
+    def item_feedback(self, spec: ExerciseSpec, variant: Variant, item_id: str) -> str:
+        """The message for an item out of place, rendered like a prompt (course text)."""
+        line = self.feedback_lines.get(item_id, spec.line)
+        return render(spec, Text(self.feedback[item_id], line), variant)
 
 
 def longest_ordered(positions: list[int]) -> list[int]:
@@ -84,15 +94,23 @@ class OrderKind(Kind):
         if len(items) < 3:
             check.add(raw.line_of("items"), "an order exercise needs at least three items")
         feedback = check.typed(raw, "feedback", dict, {})
+        lines: dict[str, int] = {}
         for key in feedback:
             if str(key).lower() not in [it.id for it in items]:
                 check.add(raw.line_of("feedback"), f"feedback for unknown item '{key}'")
+            lines[str(key).lower()] = (
+                feedback.text_line(key)
+                if isinstance(feedback, LineDict)
+                else raw.line_of("feedback")
+            )
         if spec.reference:
             check.add(
                 spec.reference_line,
                 "an order exercise takes its answer from the order of 'items'; remove 'reference'",
             )
-        return OrderOptions(tuple(items), {str(k).lower(): str(v) for k, v in feedback.items()})
+        return OrderOptions(
+            tuple(items), {str(k).lower(): str(v) for k, v in feedback.items()}, lines
+        )
 
     def expected(self, spec: ExerciseSpec, variant: Variant) -> list[str]:
         return [it.id for it in spec.options.items]
@@ -126,7 +144,11 @@ class OrderKind(Kind):
         return [labels[i] for i in self.expected(spec, variant)]
 
     def form(self, spec: ExerciseSpec, variant: Variant) -> dict[str, Any]:
-        items = [{"id": label, "text": it.text} for label, it in self.shown(spec, variant)]
+        opts: OrderOptions = spec.options
+        items = [
+            {"id": label, "text": opts.item_text(spec, variant, it)}
+            for label, it in self.shown(spec, variant)
+        ]
         return {"type": "order", "items": items}
 
     def how_to_answer(self, spec: ExerciseSpec, variant: Variant) -> str:
@@ -157,17 +179,23 @@ class OrderKind(Kind):
             twice = sorted({g for g in given if given.count(g) > 1})
             what = f"missing {', '.join(missing)}" if missing else f"repeated {', '.join(twice)}"
             return Verdict.unreadable(f"use each item exactly once ({what})")
-        if given == right:
-            return Verdict.ok("Correct: every step is in its place.")
+        if given == right:  # the face says "correct": not twice
+            return Verdict.ok("Every step is in its place.")
+        opts: OrderOptions = spec.options
         run = longest_ordered([right.index(g) for g in given])
         in_run = {given[i] for i in run}
         out = [g for g in given if g not in in_run]
         parts = [f"Not quite: {len(run)} of {len(right)} steps are in the right relative order."]
-        listed = "; ".join(f"{g}) {by_label[g].text.rstrip('.')}" for g in out)
+        listed = "; ".join(
+            f"{g}) {opts.item_text(spec, variant, by_label[g]).rstrip('.')}" for g in out
+        )
         parts.append(f"Out of place: {listed}.")
-        feedback = spec.options.feedback
-        parts += [feedback[by_label[g].id] for g in out if by_label[g].id in feedback]
-        return Verdict.wrong(" ".join(parts), score=len(run) / len(right), out_of_place=out)
+        parts += [
+            opts.item_feedback(spec, variant, by_label[g].id)
+            for g in out
+            if by_label[g].id in opts.feedback
+        ]  # a paragraph each: sentences of their own, never run together
+        return Verdict.wrong("\n\n".join(parts), score=len(run) / len(right), out_of_place=out)
 
     def self_test(self, spec: ExerciseSpec, variant: Variant) -> list[Problem]:
         problems = []

@@ -24,7 +24,7 @@ from urllib.parse import urlencode
 from flask import Flask, Response, abort, g, jsonify, redirect, render_template, request, url_for
 from markupsafe import Markup
 
-from slamcourse.engine import FileChanged, Locked
+from slamcourse.engine import STATUS_MARK, STATUS_WORD, FileChanged, Locked
 from slamcourse.errors import SlamcourseError
 from slamcourse.web.markdown import to_html, to_inline_html
 
@@ -42,8 +42,6 @@ CSP = (
 )
 """The page's policy. The per-response style nonce is for the one ``<style>`` element the code
 editor (CodeMirror) injects; no script runs inline."""
-STATUS_MARK = {"solved": "✓", "given_up": "✗", "pending": "○"}
-STATUS_WORD = {"solved": "solved", "given_up": "given up", "pending": "open"}
 
 
 def anchor(exercise_id: str) -> str:
@@ -350,6 +348,9 @@ def _result_json(engine: Engine, result: Result) -> dict[str, Any]:
     data["summary"] = engine.summary()
     if result.verdict.passed and not result.practice:
         data["plot_svg"] = _plot(engine, engine.pose(result.exercise_id))
-    nxt = engine.next_exercise()
-    data["next_url"] = _exercise_url(engine, nxt) if nxt and nxt != result.exercise_id else None
+    step = engine.next_step()  # the terminal's `next` asks the same after an answer
+    nxt = step.exercise_id
+    moved = nxt is not None and nxt != result.exercise_id
+    data["next_url"] = _exercise_url(engine, nxt) if moved and nxt else None
+    data["next_note_html"] = str(to_inline_html(step.note)) if moved and step.note else None
     return data

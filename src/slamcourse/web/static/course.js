@@ -4,8 +4,14 @@
 "use strict";
 
 (function () {
-  const MARK = { solved: "✓", given_up: "✗", pending: "○" };
-  const WORD = { solved: "solved", given_up: "given up", pending: "open" };
+  // The marks and words of exercise states come from the page's legend, which the server fills
+  // from the engine's one table of them (the terminal's `list` shows the same).
+  const MARK = {};
+  const WORD = {};
+  document.querySelectorAll("[data-legend-mark]").forEach(function (el) {
+    MARK[el.dataset.legendMark] = el.textContent;
+    WORD[el.dataset.legendMark] = el.dataset.word;
+  });
   const STATUS = {
     passed: "✓ Correct",
     failed: "✗ Not yet",
@@ -65,25 +71,42 @@
   }
 
   // ------------------------------------------------------------------ sidebar
+  function setBar(bar, solved, total) {
+    if (!bar) return;
+    bar.max = total;
+    bar.value = solved;
+    bar.textContent = solved + "/" + total;
+  }
+
   function refreshSidebar(summary) {
     if (!summary) return;
+    let solvedAll = 0;
+    let totalAll = 0;
     summary.forEach(function (ch) {
+      solvedAll += ch.solved;
+      totalAll += ch.total;
       const count = document.querySelector('[data-count="' + CSS.escape(ch.id) + '"]');
       if (count) count.textContent = ch.solved + "/" + ch.total;
+      setBar(document.querySelector('[data-bar="' + CSS.escape(ch.id) + '"]'), ch.solved, ch.total);
       ch.exercises.forEach(function (ex) {
         const li = document.querySelector('[data-status-of="' + CSS.escape(ex.id) + '"]');
         if (!li) return;
+        const shown = ex.status === "pending" && ex.skipped ? "skipped" : ex.status;
         li.className = "status-" + ex.status;
-        li.querySelector(".mark").textContent = MARK[ex.status];
-        li.querySelector(".word").textContent = WORD[ex.status];
+        li.querySelector(".mark").textContent = MARK[shown];
+        li.querySelector(".word").textContent = WORD[shown];
       });
     });
+    const overall = document.querySelector("[data-overall]");
+    if (overall) overall.textContent = solvedAll + "/" + totalAll;
+    setBar(document.querySelector("[data-overall-bar]"), solvedAll, totalAll);
   }
 
   function setStatus(section, status) {
     section.classList.remove("status-pending", "status-solved", "status-given_up");
     section.classList.add("status-" + status);
     section.querySelector("[data-badge]").textContent = MARK[status] + " " + WORD[status];
+    section.querySelector("[data-giveup]").hidden = status !== "pending";  // nothing to give up
   }
 
   // ------------------------------------------------------------------ answers
@@ -199,6 +222,12 @@
       fb.appendChild(n);
     }
     if (result.next_url && result.status === "passed" && !result.practice) {
+      if (result.next_note_html) {  // the engine's word on where next goes (wrapped, skipped)
+        const note = document.createElement("p");
+        note.className = "next-note";
+        setHTML(note, result.next_note_html);
+        fb.appendChild(note);
+      }
       const a = document.createElement("a");
       a.className = "button primary";
       a.href = result.next_url;
@@ -456,12 +485,36 @@
     area.rows = Math.max(8, n + 1);
   }
 
-  function editorKeys(area, ev) {
+  // Tab in the editor: by default it moves on to the next control like everywhere else on the
+  // page (no keyboard trap); Ctrl+M switches Tab to indenting and back (CodeMirror's own key
+  // for this), and while it indents, Esc then Tab still leaves. The help line says which.
+  const TAB_LEAVES = "Tab moves on to the next control. Press Ctrl+M in the editor to make Tab " +
+    "indent (Enter keeps the indentation; Ctrl+] and Ctrl+[ indent and dedent).";
+  const TAB_INDENTS = "Tab indents by 4 spaces; Esc then Tab leaves the editor. Press Ctrl+M " +
+    "to make Tab move on to the next control again.";
+
+  function isTabModeKey(ev) {
+    return ev.ctrlKey && !ev.altKey && !ev.metaKey && !ev.shiftKey && (ev.key === "m" || ev.key === "M");
+  }
+
+  function setTabIndents(section, area, indents) {
+    if (indents) area.dataset.tabIndents = "1";
+    else delete area.dataset.tabIndents;
+    const help = section.querySelector("[data-editor-help]");
+    if (help) help.textContent = indents ? TAB_INDENTS : TAB_LEAVES;
+  }
+
+  function editorKeys(section, area, ev) {
+    if (isTabModeKey(ev)) {
+      ev.preventDefault();
+      setTabIndents(section, area, !area.dataset.tabIndents);
+      return;
+    }
     if (ev.key === "Escape") {
       area.dataset.escaped = "1";
       return;
     }
-    if (ev.key !== "Tab" || area.dataset.escaped) {
+    if (ev.key !== "Tab" || area.dataset.escaped || !area.dataset.tabIndents) {
       delete area.dataset.escaped;
       return;
     }
@@ -579,12 +632,25 @@
       pre.hidden = true;
       const nonce = document.querySelector('meta[name="slamcourse-style-nonce"]');
       const label = area.getAttribute("aria-label");
-      editors.set(area, window.SlamEditor.fromTextArea(area, label, nonce && nonce.content));
+      const view = window.SlamEditor.fromTextArea(area, label, nonce && nonce.content);
+      editors.set(area, view);
+      view.setTabFocusMode(true); // Tab leaves the editor until Ctrl+M (see TAB_LEAVES)
+      const help = section.querySelector("[data-editor-help]");
+      if (help && help.id) view.contentDOM.setAttribute("aria-describedby", help.id);
+      // before CodeMirror's own Ctrl-M binding, so the help line always matches the mode
+      view.dom.addEventListener("keydown", function (ev) {
+        if (!isTabModeKey(ev)) return;
+        ev.preventDefault();
+        ev.stopPropagation();
+        const indents = !area.dataset.tabIndents;
+        view.setTabFocusMode(!indents);
+        setTabIndents(section, area, indents);
+      }, true);
     } else if (area) {
       const pre = section.querySelector("[data-gutter]");
       gutter(area, pre);
       area.addEventListener("input", () => gutter(area, pre));
-      area.addEventListener("keydown", (ev) => editorKeys(area, ev));
+      area.addEventListener("keydown", (ev) => editorKeys(section, area, ev));
       area.addEventListener("scroll", () => (pre.scrollTop = area.scrollTop));
     }
     section.querySelector("[data-hint]").addEventListener("click", async function () {
