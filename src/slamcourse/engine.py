@@ -366,8 +366,9 @@ class Engine:
         server's other requests of CPU."""
         with self._pool_lock:
             if self._pool is None or not self._pool.fork:
-                old, self._pool = self._pool, self._new_pool(
-                    self.settings, keep_spare=True, fork=True
+                old, self._pool = (
+                    self._pool,
+                    self._new_pool(self.settings, keep_spare=True, fork=True),
                 )
                 if old is not None:
                     old.close()
