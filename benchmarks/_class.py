@@ -69,7 +69,11 @@ def right_text(spec: ExerciseSpec, seed: int) -> str | None:
     builder cannot write one)."""
     if spec.kind == "expression":
         return FORMULAS.get(spec.id)
-    return _text(get_kind(spec.kind).expected(spec, variant(spec, seed)))
+    kind = get_kind(spec.kind)
+    shown = getattr(kind, "shown_answer", None)  # choice, multi, order: the letters shown
+    if shown is not None:
+        return _text(shown(spec, variant(spec, seed)))
+    return _text(kind.expected(spec, variant(spec, seed)))
 
 
 def wrong_text(spec: ExerciseSpec, seed: int) -> str:
