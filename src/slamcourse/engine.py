@@ -787,15 +787,19 @@ class Engine:
             else:
                 store.set_meta({self._SKIPPED: self._skipped_value(drop=exercise_id)})
 
-    def summary(self) -> list[dict[str, Any]]:
+    def summary(self, step: NextStep | None = None) -> list[dict[str, Any]]:
         """Per chapter: id, number, title, solved/total, and each exercise with its status
         (and whether it is skipped, and whether it is the one ``next`` poses).
 
         Kept up to date, not recomputed (the browser asks for it with every answer): only the
         chapters holding an exercise whose state changed since the last call
         (:meth:`Progress.changes_since`), the old or new ``next`` exercise, or one newly skipped
-        or no longer skipped are rebuilt. Always equal to :meth:`summary_full`."""
-        current = self.next_exercise() if self.progress else None
+        or no longer skipped are rebuilt. Always equal to :meth:`summary_full`. ``step``: the
+        :meth:`next_step` the caller already asked for (not computed twice)."""
+        if step is not None:
+            current = step.exercise_id
+        else:
+            current = self.next_exercise() if self.progress else None
         skipped = frozenset(self.skipped()) if self.progress else frozenset()
         return self._summary.get(self, current, skipped)
 

@@ -25,11 +25,6 @@ MAX_RECORDED = 20  # failing inputs kept for recognising misconceptions
 _HYPOTHESIS = threading.RLock()
 
 
-def hypothesis_lock() -> threading.RLock:
-    """One Hypothesis run at a time in this process (validation grades in threads)."""
-    return _HYPOTHESIS
-
-
 @contextlib.contextmanager
 def hypothesis_run() -> Iterator[None]:
     """One Hypothesis run at a time, drawing the same inputs from the same seed in every

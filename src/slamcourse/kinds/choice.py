@@ -11,7 +11,7 @@ from __future__ import annotations
 import random
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any, ClassVar
+from typing import Any, ClassVar, Protocol, TypeVar
 
 from slamcourse.answers import parse_ids
 from slamcourse.course.model import ExerciseSpec, Text, Variant
@@ -34,6 +34,23 @@ def position_labels(ids: Sequence[str]) -> list[str] | None:
         if len(alphabet) == n and sorted(ids) == sorted(alphabet):
             return alphabet
     return None
+
+
+class _Labelled(Protocol):
+    @property
+    def id(self) -> str: ...
+
+
+T = TypeVar("T", bound=_Labelled)
+
+
+def labelled(items: Sequence[T]) -> list[tuple[str, T]]:
+    """(label, item) for ``items`` (each with an ``id``) in the order shown: relabelled
+    ``a, b, c, …`` in that order when the ids are mere labels (:func:`position_labels`), else
+    under their own ids."""
+    ids = [item.id for item in items]
+    labels = position_labels(ids)
+    return list(zip(labels if labels is not None else ids, items, strict=True))
 
 
 @dataclass(frozen=True)
@@ -156,11 +173,7 @@ class ChoiceKind(Kind):
         """(label, option) in the order shown: the letters ``a, b, c, …`` in that order when
         the authored ids are mere labels, else the authored ids. What a face shows, what a
         learner types and what :meth:`check` reads."""
-        choices = self.display_order(spec, variant)
-        labels = position_labels([c.id for c in choices])
-        if labels is None:
-            return [(c.id, c) for c in choices]
-        return list(zip(labels, choices, strict=True))
+        return labelled(self.display_order(spec, variant))
 
     def labels(self, spec: ExerciseSpec, variant: Variant) -> dict[str, str]:
         """Authored id → the label this variant shows it under."""

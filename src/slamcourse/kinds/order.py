@@ -18,7 +18,7 @@ from slamcourse.course.schema import Checker
 from slamcourse.course.yamlio import LineDict, LineList
 from slamcourse.errors import AnswerFormatError, Problem
 from slamcourse.kinds.base import Kind, problem, render
-from slamcourse.kinds.choice import position_labels
+from slamcourse.kinds.choice import labelled
 from slamcourse.verdict import Verdict
 
 
@@ -127,11 +127,7 @@ class OrderKind(Kind):
         """(label, item) in the order shown: the letters ``a, b, c, …`` in that order when the
         authored ids are mere labels, else the authored ids. What a face shows, what a learner
         types and what :meth:`check` reads."""
-        items = self.display_order(spec, variant)
-        labels = position_labels([it.id for it in items])
-        if labels is None:
-            return [(it.id, it) for it in items]
-        return list(zip(labels, items, strict=True))
+        return labelled(self.display_order(spec, variant))
 
     def labels(self, spec: ExerciseSpec, variant: Variant) -> dict[str, str]:
         """Authored id → the label this variant shows it under."""

@@ -345,10 +345,10 @@ def _result_json(engine: Engine, result: Result) -> dict[str, Any]:
     data["feedback_html"] = str(to_html(data["feedback"]))
     data["explanation_html"] = str(to_html(data["explanation"])) if data["explanation"] else None
     data["nudge_html"] = str(to_html(data["nudge"])) if data["nudge"] else None
-    data["summary"] = engine.summary()
+    step = engine.next_step()  # the terminal's `next` asks the same after an answer
+    data["summary"] = engine.summary(step)
     if result.verdict.passed and not result.practice:
         data["plot_svg"] = _plot(engine, engine.pose(result.exercise_id))
-    step = engine.next_step()  # the terminal's `next` asks the same after an answer
     nxt = step.exercise_id
     moved = nxt is not None and nxt != result.exercise_id
     data["next_url"] = _exercise_url(engine, nxt) if moved and nxt else None
