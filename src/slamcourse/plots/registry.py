@@ -11,18 +11,16 @@ example). See docs/authoring.md, "Pictures".
 
 from __future__ import annotations
 
+import importlib
 import math
-from collections.abc import Callable, Iterable, Mapping
-from dataclasses import dataclass
-from typing import Any
+import pkgutil
+from collections.abc import Iterable
 
 from slamcourse.plots.drift import drift_trajectories
 from slamcourse.plots.geometry import observation_geometry
 from slamcourse.plots.occupancy import occupancy_grid, occupancy_ray
+from slamcourse.plots.picture import Figure, Params, Picture, answer, given
 from slamcourse.plots.sparsity import MAX_N, information_sparsity
-
-Params = Mapping[str, Any]
-Plot = Callable[[Params], str]
 
 
 def _logit(p: float) -> float:
@@ -60,23 +58,8 @@ def _grid(l_occ: float, l_free: float) -> str:
     return occupancy_grid(8, 6, (1, 3), _BEAMS, l_occ, l_free)
 
 
-@dataclass(frozen=True)
-class Picture:
-    """``draw(params, show_results)`` → SVG. ``after_solving``: the picture shows the answer
-    itself (a count of cells, a value), so it appears only once the exercise is solved or given
-    up; other pictures hide their derived figures (``show_results`` False) until then."""
-
-    draw: Callable[[Params, bool], str]
-    after_solving: bool = False
-
-
-def _given(draw: Plot) -> Picture:
-    """A picture of the givens only: nothing in it is an answer."""
-    return Picture(lambda p, _: draw(p))
-
-
-def _answer(draw: Plot) -> Picture:
-    return Picture(lambda p, _: draw(p), after_solving=True)
+_given = given
+_answer = answer
 
 
 BY_ID: dict[str, Picture] = {
@@ -107,6 +90,32 @@ BY_ID: dict[str, Picture] = {
     ),
 }
 
+FIGURES: dict[str, Figure] = {}
+"""Figures of the chapters' prose, by ``<chapter-id>/<name>`` (a ```{figure} ID``` block)."""
+
+
+def _collect_chapter_modules() -> None:
+    """Merge every ``slamcourse.plots.ch_*`` module's ``PICTURES`` (exercise id → Picture) and
+    ``FIGURES`` (figure id → drawing) into the registry; an id defined twice is a bug."""
+    import slamcourse.plots as package
+
+    for info in sorted(pkgutil.iter_modules(package.__path__), key=lambda m: m.name):
+        if not info.name.startswith("ch_"):
+            continue
+        module = importlib.import_module(f"slamcourse.plots.{info.name}")
+        for source, target in (
+            (getattr(module, "PICTURES", {}), BY_ID),
+            (getattr(module, "FIGURES", {}), FIGURES),
+        ):
+            for key, value in source.items():
+                if key in target:
+                    raise RuntimeError(f"plots/{info.name}.py: {key!r} is registered twice")
+                target[key] = value
+
+
+_collect_chapter_modules()
+
+
 BY_TAG: list[tuple[str, frozenset[str], Picture]] = [
     # range and bearing are what these exercises ask: "?" until solved
     ("observation-model", frozenset({"xr", "yr", "thr", "xj", "yj"}), Picture(_geometry)),
@@ -136,3 +145,9 @@ def plot_for(exercise_id: str, tags: Iterable[str], params: Params, *, solved: b
 def has_plot(exercise_id: str, tags: Iterable[str], params: Params) -> bool:
     """Whether the exercise has a picture (perhaps only once solved)."""
     return _picture(exercise_id, tags, params) is not None
+
+
+def figure_svg(figure_id: str) -> str | None:
+    """The SVG of a prose figure, or None when no chapter module defines ``figure_id``."""
+    draw = FIGURES.get(figure_id)
+    return None if draw is None else draw()
