@@ -11,7 +11,10 @@ command -v bwrap >/dev/null 2>&1 || need+=(bubblewrap)          # the learner-co
 "$PY" -c "import ensurepip, venv" >/dev/null 2>&1 || need+=(python3-venv)
 # browser tests: Playwright drives Debian's chromium (never `playwright install`)
 case "${EXTRAS:-}" in
-  *test*) command -v chromium >/dev/null 2>&1 || need+=(chromium) ;;
+  *test*)
+    command -v chromium >/dev/null 2>&1 || need+=(chromium)
+    # the JupyterHub test's proxy, configurable-http-proxy, comes from npm (below)
+    command -v npm >/dev/null 2>&1 || need+=(npm) ;;
 esac
 if [ "${#need[@]}" -gt 0 ] && command -v apt-get >/dev/null 2>&1; then
   echo "==> apt-get install ${need[*]}" >&2
@@ -32,3 +35,12 @@ if [ "$(cat "$stamp" 2>/dev/null)" != "$want" ]; then
   echo "$want" > "$stamp"
   echo "$want" > "$(stamp_of "")"       # any install with extras includes the base install
 fi
+# tests: configurable-http-proxy (npm) for the JupyterHub test, kept inside the venv
+case "${EXTRAS:-}" in
+  *test*)
+    if [ ! -x .venv/chp/node_modules/.bin/configurable-http-proxy ] && command -v npm >/dev/null 2>&1; then
+      echo "==> npm install configurable-http-proxy (into .venv/chp)" >&2
+      npm install --prefix .venv/chp --no-audit --no-fund --loglevel=error \
+        "configurable-http-proxy@^4" >/dev/null
+    fi ;;
+esac

@@ -48,10 +48,13 @@ class Out:
 
         return style(text, *names, color=True)
 
-    def markdown(self, text: str) -> None:
-        from slamcourse.render.terminal import render_markdown
+    def markdown(self, text: str, *, figures: Path | None = None) -> None:
+        """Render Markdown; a prose figure is written as SVG under ``figures`` (a workspace)
+        and named in one line (without ``figures``: named, with the command that draws it)."""
+        from slamcourse.render.terminal import figure_writer, render_markdown
 
-        self.line(render_markdown(text, width=self.width, color=self.color))
+        figure = figure_writer(figures) if figures is not None else None
+        self.line(render_markdown(text, width=self.width, color=self.color, figure=figure))
 
     def json(self, data: Any) -> None:
         self.line(json.dumps(data, indent=2, ensure_ascii=False))
@@ -184,7 +187,7 @@ def _show_prompt(out: Out, engine: Engine, prompt: Prompt, *, context: bool) -> 
     if context:
         prose = engine.context(prompt.exercise_id)
         if prose:
-            out.markdown(prose)
+            out.markdown(prose, figures=engine.settings.workspace)
             out.line()
     out.line(out.style(_math(prompt.title), "bold", "cyan"))
     out.markdown(prompt.text)
@@ -717,10 +720,29 @@ def cmd_stats(args: argparse.Namespace, out: Out) -> int:
 
 
 def cmd_export(args: argparse.Namespace, out: Out) -> int:
-    """Build a platform's autograder bundle (Gradescope)."""
+    """Build a platform's autograder bundle (Gradescope), or the course as notebooks."""
+    if args.platform == "notebooks":
+        from slamcourse.notebook.export import export_notebooks
+
+        if args.wheel or args.secret:
+            raise UsageError("export notebooks DIR takes no --wheel or --secret")
+        folder = args.dir or args.out
+        if folder is None:
+            raise UsageError("export notebooks DIR: name the folder to write the notebooks to")
+        paths = export_notebooks(
+            Path(args.course) if args.course else None, Path(folder), force=args.force
+        )
+        out.line(f"Wrote {len(paths)} notebooks to {folder}")
+        return 0
+    if args.dir is not None or args.force:
+        raise UsageError(
+            "export gradescope writes --out PATH (a zip); DIR and --force are for notebooks"
+        )
     from slamcourse.batch import bundle
     from slamcourse.settings import grading_secret
 
+    if args.out is None:
+        args.out = "autograder.zip"
     secret = args.secret or grading_secret()
     path = bundle.gradescope_bundle(
         Path(args.out), wheel=args.wheel, course=args.course, secret=secret
@@ -868,9 +890,13 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
         "--host", default="127.0.0.1", metavar="H", help="address to bind (default 127.0.0.1)"
     )
     p.add_argument("--no-browser", action="store_true", help="only print the address")
-    p = add("plot", cmd_plot, "write the picture of an exercise (your numbers) as SVG")
-    p.add_argument("exercise", metavar="ID")
-    p.add_argument("--out", metavar="FILE.svg", help="write to FILE.svg (default: stdout)")
+    p = add("plot", cmd_plot, "write the picture of an exercise (your numbers) or a figure as SVG")
+    p.add_argument("exercise", metavar="ID", help="an exercise id or a chapter figure's id")
+    p.add_argument(
+        "--out",
+        metavar="FILE.svg",
+        help="write to FILE.svg ('-': print the SVG; default: your workspace's figures folder)",
+    )
 
     p = add(
         "submit",
@@ -911,9 +937,20 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
     p = add("stats", cmd_stats, "class statistics from grade results (files or folders)")
     p.add_argument("results", metavar="RESULTS", nargs="+")
     p.add_argument("--json", action="store_true")
-    p = add("export", cmd_export, "build a grading platform's autograder bundle")
-    p.add_argument("platform", choices=("gradescope",))
-    p.add_argument("--out", default="autograder.zip", metavar="PATH")
+    p = add(
+        "export",
+        cmd_export,
+        "build a grading platform's autograder bundle (gradescope), or write the course as "
+        "Jupyter notebooks, one per chapter (notebooks DIR)",
+    )
+    p.add_argument("platform", choices=("gradescope", "notebooks"))
+    p.add_argument("dir", metavar="DIR", nargs="?", help="notebooks: the folder to write")
+    p.add_argument(
+        "--out", metavar="PATH", help="gradescope: the zip to write (default autograder.zip)"
+    )
+    p.add_argument(
+        "--force", action="store_true", help="notebooks: overwrite notebooks already in DIR"
+    )
     p.add_argument(
         "--wheel", metavar="PATH", help="install this wheel instead of slamcourse from PyPI"
     )

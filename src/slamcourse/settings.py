@@ -35,6 +35,11 @@ ENVIRONMENT = (
     (ENV_COURSE, "use another course folder instead of the bundled one"),
     ("SLAMCOURSE_SANDBOX", "auto | namespaces | rlimits: how learner code is isolated"),
     (ENV_GRADING_SECRET, "batch grading: the instructor's secret that seeds hidden checks"),
+    (
+        "SLAMCOURSE_SERVE_TOKEN",
+        "serve: require this token instead of a fresh one, and do not print it (set by a hub's "
+        "launcher)",
+    ),
     ("NO_COLOR", "plain output"),
 )
 

@@ -300,7 +300,31 @@ def _check_claims(sub: Submission, engine: Engine, root: Path, name: str) -> lis
     return warnings
 
 
+def _own_variants(sub: Submission, engine: Engine) -> Submission:
+    """Answers read from notebooks are on the learner's own variant: set it (from the seed)."""
+    import dataclasses
+
+    from slamcourse.progress import variant_seed_for
+
+    if not any(a.own_variant for a in sub.manifest.answers):
+        return sub
+    known = set(engine.course.exercise_ids)
+    answers = []
+    for a in sub.manifest.answers:
+        if a.own_variant and a.exercise in known:
+            spec = engine.exercise(a.exercise)
+            own = 0
+            if spec.has_variants and spec.kind != "code":
+                own = variant_seed_for(sub.manifest.learner_seed, spec.id)
+            a = dataclasses.replace(a, variant=own)
+        answers.append(a)
+    manifest = dataclasses.replace(sub.manifest, answers=tuple(answers))
+    return dataclasses.replace(sub, manifest=manifest)
+
+
 def _command(answer: Answer) -> str:
+    if answer.file is not None and answer.origin is not None:
+        return f"run {answer.origin} again (%%slamcourse check {answer.exercise})"
     if answer.file is not None:
         return f"slamcourse check {answer.exercise} --file {answer.file}"
     text = (answer.text or "").replace("'", "'\\''")
@@ -434,7 +458,8 @@ def grade_submission(
             fork_workers=True,
             course=_course(root),
         ) as engine:
-            warnings = _check_claims(sub, engine, root, name)
+            sub = _own_variants(sub, engine)
+            warnings = [*sub.notes, *_check_claims(sub, engine, root, name)]
             given = {a.exercise: a for a in sub.manifest.answers}
             grades: list[ExerciseGrade] = []
             for ex in engine.course.exercise_ids:

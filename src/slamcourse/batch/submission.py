@@ -17,7 +17,7 @@ import re
 import stat
 import zipfile
 from collections.abc import Iterator
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path, PurePosixPath
 from typing import TYPE_CHECKING, Any
 
@@ -98,6 +98,8 @@ class Answer:
     text: str | None = None
     file: str | None = None
     attempts: int | None = None
+    origin: str | None = None  # a notebook's cell (``ch.ipynb, cell 7``); None: the manifest
+    own_variant: bool = False  # the variant is the learner's own, set by the grader
 
     def to_dict(self) -> dict[str, Any]:
         out: dict[str, Any] = {"exercise": self.exercise, "variant": self.variant}
@@ -142,6 +144,7 @@ class Submission:
 
     manifest: Manifest
     files: dict[str, bytes] = field(default_factory=dict)
+    notes: tuple[str, ...] = ()  # what reading it found worth saying (graded as warnings)
 
     def source(self, answer: Answer) -> bytes:
         assert answer.file is not None
@@ -367,15 +370,30 @@ def _read_folder(root: Path, limits: Limits) -> dict[str, bytes]:
     return files
 
 
+def _read_notebook_file(path: Path, limits: Limits) -> dict[str, bytes]:
+    """A submission that is one notebook file: ``{its name: its bytes}``."""
+    fd = os.open(path, os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0))
+    with os.fdopen(fd, "rb") as fh:
+        data = _read_capped(fh, min(limits.max_file_bytes, limits.max_total_bytes))
+    if data is None:
+        raise SubmissionError(f"{path.name} is larger than the grader accepts")
+    return {path.name: data}
+
+
 def read(path: Path, limits: Limits | None = None) -> Submission:
-    """Load a submission (folder or zip) into memory, checking only its form; what it claims
-    (course, seeds) is checked by the grader."""
+    """Load a submission (folder, zip, or one ``.ipynb`` notebook) into memory, checking only
+    its form; what it claims (course, seeds) is checked by the grader. Notebooks in it add
+    their answers (:func:`with_notebooks`)."""
+    from slamcourse.batch.notebooks import is_notebook
+
     limits = limits or Limits()
     try:
         if path.is_symlink():
             raise SubmissionError(f"{path.name} is a symbolic link; pass the real file")
         if path.is_dir():
             files = _read_folder(path, limits)
+        elif path.is_file() and is_notebook(path.name):
+            files = _read_notebook_file(path, limits)
         elif path.is_file():
             files = _read_zip(path, limits)
         else:
@@ -387,10 +405,89 @@ def read(path: Path, limits: Limits | None = None) -> Submission:
         tops = {name.split("/", 1)[0] for name in files}
         if len(tops) == 1 and (prefix := tops.pop() + "/") + MANIFEST in files:
             files = {k[len(prefix) :]: v for k, v in files.items() if k.startswith(prefix)}
-    if MANIFEST not in files:
-        raise SubmissionError(f"{path.name} has no {MANIFEST}; see docs/submissions.md")
-    manifest = parse_manifest(files.pop(MANIFEST), path.name)
-    return Submission(manifest, files)
+    if MANIFEST not in files and not any(is_notebook(name) for name in files):
+        raise SubmissionError(
+            f"{path.name} has no {MANIFEST} and no notebook (.ipynb); see docs/submissions.md"
+        )
+    manifest = parse_manifest(files.pop(MANIFEST), path.name) if MANIFEST in files else None
+    return with_notebooks(manifest, files, path.name)
+
+
+def with_notebooks(manifest: Manifest | None, files: dict[str, bytes], where: str) -> Submission:
+    """A submission whose notebooks' answers join the manifest's (a notebook's answer to an
+    exercise the manifest answers too replaces it, with a note); without a manifest, the
+    learner and course are the ones the notebooks' outputs name."""
+    from slamcourse.batch.notebooks import NotebookError, read_notebooks
+
+    try:
+        found = read_notebooks(files)
+    except NotebookError as exc:
+        raise SubmissionError(f"{where}: {exc}") from None
+    if manifest is None:
+        manifest = _manifest_from_notebooks(found.identities, where)
+    else:
+        for name, ident in found.identities.items():
+            if ident["learner"]["seed"] != manifest.learner_seed:
+                raise SubmissionError(
+                    f"{where}: {name} was run by another learner than {MANIFEST} names "
+                    "(learner seeds differ); run it again under your own progress and save it"
+                )
+    if not found.exercises:
+        return Submission(manifest, files)
+    notes = []
+    answers = []
+    for answer in manifest.answers:
+        if answer.exercise in found.exercises:
+            notes.append(
+                f"{answer.exercise} is answered both in {MANIFEST} and in a notebook; the "
+                "notebook's answer is graded"
+            )
+        else:
+            answers.append(answer)
+    files = dict(files)
+    for ex, (source, origin) in sorted(found.code.items()):
+        rel = f"{origin}#{ex}.py"  # a name no manifest can give (it is not a plain path)
+        files[rel] = source.encode("utf-8", "surrogatepass")
+        answers.append(Answer(ex, 0, file=rel, origin=origin, own_variant=True))
+    for ex, (text, origin) in sorted(found.text.items()):
+        answers.append(Answer(ex, 0, text=text, origin=origin, own_variant=True))
+    return Submission(replace(manifest, answers=tuple(answers)), files, tuple(notes))
+
+
+def _manifest_from_notebooks(identities: dict[str, dict[str, Any]], where: str) -> Manifest:
+    if not identities:
+        raise SubmissionError(
+            f"{where} has no {MANIFEST}, and no notebook in it says who ran it: run the "
+            "notebook's first code cell (it records your learner id), save, and hand it in "
+            f'again (docs/submissions.md, "Notebooks")'
+        )
+    first = next(iter(identities.values()))
+    for name, ident in identities.items():
+        if ident["learner"]["seed"] != first["learner"]["seed"]:
+            raise SubmissionError(
+                f"{where}: its notebooks were run by different learners ({name} differs); "
+                "hand in one learner's notebooks"
+            )
+    learner, course = first["learner"], first["course"]
+    fields = {
+        "learner.id": learner.get("id"),
+        "course.version": course.get("version"),
+        "course.hash": course.get("hash"),
+        "engine": first.get("engine"),
+    }
+    for label, value in fields.items():
+        if not isinstance(value, str):
+            raise SubmissionError(f"{where}: the notebooks' {label} is missing or not text")
+    name = learner.get("name")
+    return Manifest(
+        learner_id=learner["id"],
+        learner_name=name if isinstance(name, str) and _printable_name(name) else None,
+        learner_seed=learner["seed"],
+        engine=first["engine"],
+        course_version=course["version"],
+        course_hash=course["hash"],
+        answers=(),
+    )
 
 
 def parse_manifest(data: bytes, where: str) -> Manifest:

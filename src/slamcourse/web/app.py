@@ -8,6 +8,12 @@ only turns its results into HTML and JSON. Security model (docs/architecture.md,
   ``?token=`` (then dropped from the address), kept in an HttpOnly SameSite=Strict cookie;
 - the Host header must name this server (``127.0.0.1:PORT`` / ``localhost:PORT``), which stops
   DNS rebinding; a POST must come from this origin and carry JSON, which stops cross-site posts;
+- behind a proxy that authenticates the learner first (jupyter-server-proxy under
+  JupyterHub: docs/deploying.md), the proxy adds the token as the ``X-Slamcourse-Token``
+  header to every request it forwards; such a request may name any host (the hub's), may be
+  mounted under the prefix the proxy names (``X-Forwarded-Prefix``: links, static files and
+  API calls follow it) and a POST must come from the origin of that host. A request without
+  the header still needs the token, whoever can reach the port;
 - bodies are limited to 256 KiB; every learner text reaches the page escaped (Jinja autoescape,
   Markdown with raw HTML disabled, ``textContent`` in the script); a strict CSP forbids inline
   scripts; learner code only ever runs through the engine's sandbox.
@@ -16,10 +22,11 @@ only turns its results into HTML and JSON. Security model (docs/architecture.md,
 from __future__ import annotations
 
 import hmac
+import re
 import secrets
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from typing import TYPE_CHECKING, Any
-from urllib.parse import urlencode
+from urllib.parse import urlencode, urlsplit
 
 from flask import Flask, Response, abort, g, jsonify, redirect, render_template, request, url_for
 from markupsafe import Markup
@@ -44,6 +51,29 @@ CSP = (
 editor (CodeMirror) injects; no script runs inline."""
 
 
+PROXY_HEADER = "X-Slamcourse-Token"
+"""The header a trusted proxy (jupyter-server-proxy) adds, holding the server's token."""
+_PREFIX = re.compile(r"^(/[A-Za-z0-9._~%!$&'()*+,;=:@-]+)*/?$")
+
+
+class ProxyPrefix:
+    """WSGI middleware: a request that carries the token in :data:`PROXY_HEADER` came
+    through the learner's own proxy, so its ``X-Forwarded-Prefix`` (where the proxy mounts
+    this app, e.g. ``/user/ada/slamcourse``) becomes the script root every URL is built on.
+    Without the token the header is ignored."""
+
+    def __init__(self, app: Any, token: str) -> None:
+        self.app = app
+        self.token = token
+
+    def __call__(self, environ: dict[str, Any], start_response: Any) -> Any:
+        given = environ.get("HTTP_" + PROXY_HEADER.upper().replace("-", "_"))
+        prefix = environ.get("HTTP_X_FORWARDED_PREFIX", "")
+        if given is not None and _same(given, self.token) and prefix and _PREFIX.match(prefix):
+            environ["SCRIPT_NAME"] = prefix.rstrip("/")
+        return self.app(environ, start_response)
+
+
 def anchor(exercise_id: str) -> str:
     """The HTML id of an exercise's section: ``basics/distance`` → ``ex-basics--distance``."""
     return "ex-" + exercise_id.replace("/", "--")
@@ -53,6 +83,7 @@ def create_app(engine: Engine, *, token: str, hosts: Iterable[str]) -> Flask:
     """The app for one learner's ``engine``. ``hosts``: the Host header values accepted
     (e.g. ``127.0.0.1:8123`` and ``localhost:8123``)."""
     app = Flask(__name__, static_folder="static", template_folder="templates")
+    app.wsgi_app = ProxyPrefix(app.wsgi_app, token)  # type: ignore[method-assign]
     app.config.update(MAX_CONTENT_LENGTH=MAX_BODY, JSON_SORT_KEYS=False)
     app.json.ensure_ascii = False  # type: ignore[attr-defined]
     allowed = frozenset(hosts)
@@ -82,6 +113,15 @@ def create_app(engine: Engine, *, token: str, hosts: Iterable[str]) -> Flask:
 
     @app.before_request
     def guard() -> BaseResponse | None:
+        proxied = request.headers.get(PROXY_HEADER)
+        if proxied is not None:
+            # forwarded by the learner's proxy, which authenticated them: the token is in the
+            # header, the host is the hub's, the origin of a POST must be that host's
+            if not _same(proxied, token):
+                return refuse(403, f"Wrong token in {PROXY_HEADER}.")
+            if request.method == "POST":
+                return same_origin(lambda origin: urlsplit(origin).netloc == request.host)
+            return None
         if request.host not in allowed:
             return refuse(400, "This server answers only to its own address (Host header).")
         if request.endpoint == "static":
@@ -92,23 +132,30 @@ def create_app(engine: Engine, *, token: str, hosts: Iterable[str]) -> Flask:
                 return refuse(403, "Wrong token: open the address `slamcourse serve` printed.")
             if request.method == "GET":
                 rest = {k: v for k, v in request.args.items() if k != "token"}
-                target = request.path + ("?" + urlencode(rest) if rest else "")
+                root = request.script_root
+                target = root + request.path + ("?" + urlencode(rest) if rest else "")
                 resp = redirect(target, code=303)
-                resp.set_cookie(cookie, token, httponly=True, samesite="Strict", path="/")
+                resp.set_cookie(cookie, token, httponly=True, samesite="Strict", path=root + "/")
                 return resp
         elif not _same(request.cookies.get(cookie, ""), token):
             return refuse(
                 403, "This page needs the token: open the address `slamcourse serve` printed."
             )
         if request.method == "POST":
-            origin = request.headers.get("Origin")
-            fetch_site = request.headers.get("Sec-Fetch-Site")
-            if origin is not None and origin not in origins:
-                return refuse(403, "Cross-site request refused (Origin).")
-            if fetch_site is not None and fetch_site not in ("same-origin", "none"):
-                return refuse(403, "Cross-site request refused (Sec-Fetch-Site).")
-            if not request.is_json:
-                return refuse(415, "Send the answer as JSON (Content-Type: application/json).")
+            return same_origin(lambda origin: origin in origins)
+        return None
+
+    def same_origin(allowed_origin: Callable[[str], bool]) -> BaseResponse | None:
+        """A POST must come from this page: its Origin (when sent) and Sec-Fetch-Site say so,
+        and it carries JSON (which a cross-site form cannot send)."""
+        origin = request.headers.get("Origin")
+        fetch_site = request.headers.get("Sec-Fetch-Site")
+        if origin is not None and not allowed_origin(origin):
+            return refuse(403, "Cross-site request refused (Origin).")
+        if fetch_site is not None and fetch_site not in ("same-origin", "none"):
+            return refuse(403, "Cross-site request refused (Sec-Fetch-Site).")
+        if not request.is_json:
+            return refuse(415, "Send the answer as JSON (Content-Type: application/json).")
         return None
 
     @app.after_request

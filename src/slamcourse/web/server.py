@@ -3,7 +3,8 @@
 One :class:`~slamcourse.engine.Engine` (the same course, progress database and sandbox as the
 terminal, from :meth:`Settings.from_env`) serves every request, from waitress: one event loop
 reads requests, a fixed pool of threads runs the app. The address printed carries a fresh random
-token, as Jupyter's does; the browser is opened on a private local file that redirects to it, so
+token, as Jupyter's does (or the token a launcher set in ``$SLAMCOURSE_SERVE_TOKEN``, then not
+printed: docs/deploying.md); the browser is opened on a private local file that redirects to it, so
 the token is never on a command line, and the access log names paths without their queries.
 
 Limits (docs/architecture.md, "Serving"): at most :data:`CONNECTION_LIMIT` connections, the
@@ -36,6 +37,10 @@ from slamcourse.errors import UsageError
 if TYPE_CHECKING:
     from slamcourse.engine import Engine
 
+ENV_TOKEN = "SLAMCOURSE_SERVE_TOKEN"
+"""The token to require instead of a fresh one: set by a launcher that starts the server and
+holds the token itself (jupyter-server-proxy on a hub, :mod:`slamcourse.notebook.hub`); then
+the address is printed without it."""
 LOOPBACK = ("127.0.0.1", "localhost", "::1")
 DEFAULT_PORT = 8765
 CONNECTION_LIMIT = 256
@@ -329,21 +334,25 @@ def serve(
     from slamcourse.settings import Settings
 
     settings = Settings.from_env(course=course)
+    given = os.environ.get(ENV_TOKEN) or None
     with Engine.open(settings) as engine:
         engine.start_workers()
         try:
-            srv = make(engine, host=host, port=DEFAULT_PORT if port is None else port)
+            srv = make(engine, host=host, port=DEFAULT_PORT if port is None else port, token=given)
         except UsageError:
             if port is not None:
                 raise
-            srv = make(engine, host=host, port=0)
+            srv = make(engine, host=host, port=0, token=given)
         if host not in LOOPBACK:
             say(
                 f"Warning: listening on {host}, not only this computer. Anyone who can reach it "
                 "and has the token can run code as you."
             )
-        say("slamcourse is running. Open this address in your browser (it holds your token):")
-        say(f"    {srv.url}")
+        if given is not None:  # the launcher holds the token and puts it in front
+            say(f"slamcourse is running at {srv.base} (the token is ${ENV_TOKEN}).")
+        else:
+            say("slamcourse is running. Open this address in your browser (it holds your token):")
+            say(f"    {srv.url}")
         say("Press Ctrl+C to stop; your progress is saved after every answer.")
         handler = logging.StreamHandler()  # stderr, as Werkzeug's log was
         handler.setFormatter(logging.Formatter("%(asctime)s %(message)s", "%H:%M:%S"))

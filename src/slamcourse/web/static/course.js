@@ -66,8 +66,13 @@
     return resp.json();
   }
 
+  // Where the app is mounted: "" on its own port, the proxy's prefix behind a hub
+  // (jupyter-server-proxy); the server says which in the page.
+  const rootMeta = document.querySelector('meta[name="slamcourse-root"]');
+  const ROOT = rootMeta ? rootMeta.content : "";
+
   function api(kind, id) {
-    return "/api/" + kind + "/" + id.split("/").map(encodeURIComponent).join("/");
+    return ROOT + "/api/" + kind + "/" + id.split("/").map(encodeURIComponent).join("/");
   }
 
   // ------------------------------------------------------------------ sidebar
