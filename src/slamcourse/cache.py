@@ -1,7 +1,8 @@
 """The learner's cache, ``<home>/cache/``: what may be thrown away at any time.
 
-It holds parsed exercise files (``yaml/``) and recorded test inputs (``inputs/``). Every entry can
-be rebuilt (at the cost of a PyYAML parse or a Hypothesis run), so the cache is kept small:
+It holds parsed exercise files (``yaml/``), recorded test inputs (``inputs/``) and drawn prose
+figures (``figures/``). Every entry can be rebuilt (at the cost of a PyYAML parse, a Hypothesis
+run or a figure's drawing), so the cache is kept small:
 
 - an entry's *last use* is its modification time: written when it is created and refreshed
   (:func:`touch`) each time a check reads it;

@@ -15,7 +15,7 @@ from pathlib import Path
 
 from slamcourse.course import templates, variants
 from slamcourse.course.loader import Course, load_course
-from slamcourse.course.model import ExerciseSpec, Text
+from slamcourse.course.model import Chapter, ExerciseSpec, Text
 from slamcourse.errors import CourseError, GraderError, Problem, UsageError, relpath
 from slamcourse.kinds import get_kind
 
@@ -91,6 +91,10 @@ def validate_course(
                 record=record,
             )
         )
+    chapters = course.chapters
+    if only is not None:
+        chapters = [ch for ch in chapters if set(ch.exercises) & set(only)]
+    report.problems.extend(figure_drawings(chapters, root))
     specs = []
     for ex_id in course.exercise_ids if only is None else only:
         try:
@@ -102,6 +106,60 @@ def validate_course(
     if only is None:  # a habit of the whole course, not of one exercise
         report.warnings.extend(key_bias(specs))
     return report
+
+
+# ------------------------------------------------------------------------------ figures
+
+
+def svg_problem(svg: object) -> str | None:
+    """Why ``svg`` is not an accessible SVG picture (None when it is): well-formed XML, an
+    ``<svg role="img">`` root whose ``<title>`` and ``<desc>`` hold text."""
+    import xml.etree.ElementTree as ET
+
+    if not isinstance(svg, str):
+        return f"returned {type(svg).__name__}, not SVG text"
+    try:
+        root = ET.fromstring(svg)
+    except ET.ParseError as exc:
+        return f"returned SVG that is not well-formed XML ({exc})"
+    ns = "{http://www.w3.org/2000/svg}"
+    if root.tag != f"{ns}svg":
+        return f"returned <{root.tag.removeprefix(ns)}>, not an <svg> element"
+    if root.get("role") != "img":
+        return 'returned an <svg> without role="img"'
+    for part in ("title", "desc"):
+        found = root.find(f"{ns}{part}")
+        if found is None or not (found.text or "").strip():
+            return f"returned an <svg> without a <{part}> (its text alternative)"
+    return None
+
+
+def figure_drawings(chapters: list[Chapter], root: Path) -> list[Problem]:
+    """Draw every figure the chapters place, once: one that raises or returns something that
+    is not an accessible SVG is a problem at its block's line (an unknown id is reported by
+    the loader)."""
+    from slamcourse.plots.registry import FIGURES
+
+    problems = []
+    for chapter in chapters:
+        for fig in chapter.figures:
+            draw = FIGURES.get(fig.id)
+            if draw is None:
+                continue
+            try:
+                why = svg_problem(draw())
+            except Exception as exc:  # a drawing bug must not stop validation
+                why = f"raised {type(exc).__name__}: {exc}"
+            if why:
+                problems.append(
+                    Problem(
+                        relpath(chapter.path, root),
+                        fig.line,
+                        f"figure '{fig.id}' {why}; fix its drawing function in "
+                        "src/slamcourse/plots/",
+                    )
+                )
+    return problems
 
 
 # ------------------------------------------------------------------------------ key bias

@@ -129,3 +129,124 @@ def test_every_registered_picture_draws_from_the_bundled_course(tmp_path: Path) 
                 assert pending is None or pending == svg or "?" in pending
     assert set(BY_ID) <= set(course.exercise_ids)
     assert drawn >= 2 * len(BY_ID)
+
+
+def test_every_figure_is_accessible_svg_and_every_placed_one_exists() -> None:
+    """Each chapter module's figures draw well-formed SVG with a text alternative; every
+    chapter of the bundled course places at least one; no figure id is an exercise id (the
+    `plot` command takes both)."""
+    from slamcourse.course.loader import load_course
+    from slamcourse.plots.registry import FIGURES
+    from tests.conftest import REPO
+
+    course = load_course(REPO)
+    placed = {f.id: ch.id for ch in course.chapters for f in ch.figures}
+    mine = [f for f in FIGURES if f.split("/")[0] in OWN_CHAPTERS]
+    for fig in mine:
+        _, title, desc = parsed(FIGURES[fig]())
+        assert title and len(desc) > 40, fig
+        assert placed.get(fig) == fig.split("/")[0], f"{fig} is not placed in its chapter"
+    assert not set(mine) & set(course.exercise_ids)
+    for chapter in OWN_CHAPTERS:
+        assert any(f.startswith(chapter + "/") for f in placed), chapter
+
+
+OWN_CHAPTERS = (
+    "state", "observation", "association", "drift", "graph", "vision", "factor-graphs",
+    "occupancy", "capstone", "se2", "motion", "ekf-slam", "jcbb", "consistency",
+    "scan-matching", "orderings", "pose-graph", "intel",
+)  # fmt: skip
+
+
+def test_code_exercises_and_late_chapters_have_pictures() -> None:
+    from slamcourse.course.loader import load_course
+    from tests.conftest import REPO
+
+    course = load_course(REPO)
+    missing_code = []
+    late = 0
+    with_picture = 0
+    for ex_id in course.exercise_ids:
+        spec = course.exercise(ex_id)
+        if spec.chapter not in OWN_CHAPTERS:
+            continue
+        has = ex_id in BY_ID or has_plot(ex_id, spec.tags, {})
+        if spec.kind == "code" and not has:
+            missing_code.append(ex_id)
+        if OWN_CHAPTERS.index(spec.chapter) >= OWN_CHAPTERS.index("se2"):
+            late += 1
+            with_picture += has
+    assert missing_code == []
+    assert with_picture >= 0.75 * late  # the rest are questions a picture does not help
+
+
+def _boxes(svg: str) -> list[tuple[float, float, float, float, str]]:
+    """Approximate boxes of the text labels (font 12 unless given, anchor start)."""
+    from slamcourse.plots.canvas import text_width
+
+    root = ET.fromstring(svg)
+    out = []
+    for t in root.iter(f"{NS}text"):
+        size = float(t.get("font-size", 12))
+        x, y, w = float(t.get("x", 0)), float(t.get("y", 0)), text_width(t.text or "", size)
+        anchor = t.get("text-anchor", "start")
+        x0 = x - w / 2 if anchor == "middle" else x - w if anchor == "end" else x
+        out.append((x0, y - size, x0 + w, y + 2, t.text or ""))
+    return out
+
+
+@pytest.mark.parametrize(
+    "pose",
+    [(2, 3, math.pi / 4, 5, 7), (0, 0, 3.0, -4, -1), (1, 1, -1.2, 1.5, 6), (0, 0, 0, 0.3, 0.2)],
+)
+def test_observation_labels_never_cover_the_robot_or_each_other(pose: tuple[float, ...]) -> None:
+    svg = observation_geometry(*pose)
+    root = ET.fromstring(svg)
+    robot = next(root.iter(f"{NS}polygon"))  # the robot's triangle
+    pts = [tuple(map(float, p.split(","))) for p in (robot.get("points") or "").split()]
+    rx0, ry0 = min(p[0] for p in pts), min(p[1] for p in pts)
+    rx1, ry1 = max(p[0] for p in pts), max(p[1] for p in pts)
+    boxes = _boxes(svg)
+    for x0, y0, x1, y1, label in boxes:
+        assert x1 <= rx0 or x0 >= rx1 or y1 <= ry0 or y0 >= ry1, f"{label!r} covers the robot"
+    for i, a in enumerate(boxes):
+        for b in boxes[i + 1 :]:
+            overlap = a[0] < b[2] and b[0] < a[2] and a[1] < b[3] and b[1] < a[3]
+            assert not overlap, f"{a[4]!r} overlaps {b[4]!r}"
+
+
+def test_random_walk_sigma_is_a_circle_at_true_scale() -> None:
+    """The 1σ circle is drawn round (a close-up at one scale), not squashed into a line by
+    the plan view's stretched sideways axis."""
+    svg = drift_trajectories(400, sigma=0.05, seed=3)
+    root = ET.fromstring(svg)
+    circles = [c for c in root.iter(f"{NS}circle") if c.get("stroke-dasharray")]
+    assert len(circles) == 1 and float(circles[0].get("r", 0)) > 20
+    assert not [e for e in root.iter(f"{NS}ellipse")]
+
+
+def test_a_figure_is_drawn_once_per_installation_and_redrawn_when_its_code_changes(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The learner's cache keeps drawn figures (one runs an optimiser for seconds), keyed by a
+    digest of what they are drawn from: a second process reads the file; changed code draws anew."""
+    from slamcourse import settings
+    from slamcourse.plots import registry
+
+    calls: list[int] = []
+
+    def draw() -> str:
+        calls.append(1)
+        return f'<svg xmlns="http://www.w3.org/2000/svg"><title>t{len(calls)}</title></svg>'
+
+    monkeypatch.setitem(registry.FIGURES, "test/costly", draw)
+    monkeypatch.setattr(settings, "_active_cache", tmp_path)
+    first = registry.figure_svg("test/costly")
+    assert calls == [1] and first is not None and "t1" in first
+    assert list((tmp_path / "figures").glob("*.svg"))
+    registry._DRAWN.clear()  # a new process: only the disk remembers
+    assert registry.figure_svg("test/costly") == first and calls == [1]
+    registry._DRAWN.clear()
+    monkeypatch.setattr(registry, "_SOURCES", ["another digest: the drawing code changed"])
+    assert "t2" in (registry.figure_svg("test/costly") or "") and calls == [1, 1]
+    registry._DRAWN.pop("test/costly", None)

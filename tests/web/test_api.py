@@ -242,7 +242,7 @@ def test_plot_of_a_bundled_exercise(tmp_path: Any) -> None:
         r = math.hypot(params["xj"] - params["xr"], params["yj"] - params["yr"])
         assert f"r = {r:.3g} m".replace("-", "−") not in resp.get_data(as_text=True)
         assert "r = ?" in resp.get_data(as_text=True)  # not solved: the answer is not drawn
-        assert c.get("/plot/state/state-size").status_code == 404
+        assert c.get("/plot/state/why-dense").status_code == 404
         star = "factor-graphs/star-fill-in"
         assert c.get(f"/plot/{star}").status_code == 404  # the picture is the answer: later
         c.post(f"/api/giveup/{star}", json={}, headers=JSON)

@@ -36,7 +36,7 @@ def test_plot_writes_the_learners_picture(
 
 
 def test_plot_of_an_exercise_without_one(capsys: pytest.CaptureFixture[str]) -> None:
-    assert main(["--course", str(REPO), "plot", "state/state-size"]) == 2
+    assert main(["--course", str(REPO), "plot", "state/why-dense"]) == 2
     err = capsys.readouterr().err
     assert "has no picture" in err and "drift/systematic-drift" in err
 

@@ -14,6 +14,7 @@ from typing import Any
 from slamcourse.course.model import (
     FORMAT_VERSION,
     Chapter,
+    ChapterFigure,
     ExerciseSpec,
     Misconception,
     ParamSpec,
@@ -24,7 +25,15 @@ from slamcourse.course.schema import Checker, suggest
 from slamcourse.course.yamlio import LineDict, LineList, load_yaml
 from slamcourse.errors import CourseError, Problem, UsageError, relpath
 
-__all__ = ["Course", "chapter_segments", "directive_id", "load_course", "load_exercise", "relpath"]
+__all__ = [
+    "Course",
+    "chapter_segments",
+    "directive_id",
+    "figure_id",
+    "load_course",
+    "load_exercise",
+    "relpath",
+]
 
 _ID = re.compile(r"^[a-z0-9]+(?:-[a-z0-9]+)*$")
 _FENCE = re.compile(r"^(?P<fence>`{3,}|~{3,})(?P<info>.*)$")
@@ -53,6 +62,15 @@ def directive_id(info: str) -> str | None:
     missing), or None when the block is not an exercise directive. The one parser of it."""
     words = info.split(None, 1)
     if not words or words[0] != "{exercise}":
+        return None
+    return words[1].strip() if len(words) > 1 else ""
+
+
+def figure_id(info: str) -> str | None:
+    """The figure id of a fenced block's info string ``{figure} ID`` (``""`` when the id is
+    missing), or None when the block is not a figure. The block's content is the caption."""
+    words = info.split(None, 1)
+    if not words or words[0] != "{figure}":
         return None
     return words[1].strip() if len(words) > 1 else ""
 
@@ -104,6 +122,7 @@ class Course:
         self.root = root
         self._chapters: list[Chapter] | None = None
         self._problems: list[Problem] = []
+        self._figures_checked = False
         self._exercises: dict[str, ExerciseSpec] = {}
 
     def __repr__(self) -> str:
@@ -117,8 +136,14 @@ class Course:
 
     @property
     def problems(self) -> list[Problem]:
-        """Problems found while indexing the chapters."""
+        """Problems found while indexing the chapters, and figures no plots module draws.
+
+        The figure ids are checked here, not while indexing: that imports the pictures'
+        registry, which ``next`` and ``check`` have no need of."""
         _ = self.chapters
+        if not self._figures_checked:
+            self._figures_checked = True
+            self._problems.extend(figure_problems(self.chapters, self.root))
         return self._problems
 
     @property
@@ -219,6 +244,65 @@ def _index_course(root: Path) -> tuple[list[Chapter], list[Problem]]:
     return chapters, problems
 
 
+def figure_problems(chapters: list[Chapter], root: Path) -> list[Problem]:
+    """``path:line`` problems for every placed figure that no ``plots/ch_*.py`` module defines."""
+    from slamcourse.plots.registry import FIGURES
+
+    out = []
+    for chapter in chapters:
+        for fig in chapter.figures:
+            if fig.id in FIGURES:
+                continue
+            ours = sorted(f for f in FIGURES if f.startswith(chapter.id + "/"))
+            hint = suggest(fig.id, list(FIGURES)) or (
+                f" (this chapter's figures: {', '.join(ours)})" if ours else ""
+            )
+            module = "ch_" + chapter.id.replace("-", "_")
+            out.append(
+                Problem(
+                    relpath(chapter.path, root),
+                    fig.line,
+                    f"figure '{fig.id}' is not drawn by any plots module: define it in "
+                    f"FIGURES of src/slamcourse/plots/{module}.py, or fix the id{hint}",
+                )
+            )
+    return out
+
+
+def _figure_block(
+    lines: list[str], start: int, fence: str, fig_id: str, chapter_id: str, check: Checker
+) -> tuple[ChapterFigure | None, int]:
+    """The figure whose block opens at ``lines[start]`` and the index of its closing fence."""
+    lineno = start + 1
+    end = start + 1
+    while end < len(lines) and not lines[end].strip().startswith(fence):
+        end += 1
+    if end == len(lines):
+        check.add(lineno, f"figure block '{fig_id}' is never closed: end it with a line {fence}")
+        return None, end
+    caption = "\n".join(lines[start + 1 : end]).strip()
+    if not fig_id:
+        check.add(
+            lineno,
+            f"figure directive without an id: write ```{{figure}} {chapter_id}/<figure-name>",
+        )
+        return None, end
+    if " " in fig_id or "/" not in fig_id:
+        check.add(
+            lineno,
+            f"figure id '{fig_id}' must look like '<chapter-id>/<figure-name>' (no spaces)",
+        )
+        return None, end
+    if not caption:
+        check.add(
+            lineno,
+            f"figure '{fig_id}' has no caption: write a one-paragraph caption (Markdown) inside "
+            "the block, saying what the reader should see",
+        )
+        return None, end
+    return ChapterFigure(fig_id, lineno, caption), end
+
+
 def _index_chapter(path: Path, root: Path, number: int, problems: list[Problem]) -> Chapter:
     rel = relpath(path, root)
     text = read_course_file(path, root)
@@ -252,7 +336,20 @@ def _index_chapter(path: Path, root: Path, number: int, problems: list[Problem])
         number,
         check.typed(meta, "summary", str, ""),
     )
-    for lineno, line in enumerate(text.splitlines(), start=1):
+    lines = text.splitlines()
+    skip_to = -1
+    for lineno, line in enumerate(lines, start=1):
+        if lineno - 1 <= skip_to:
+            continue
+        opening = _FENCE.match(line)
+        fig_id = figure_id(opening.group("info")) if opening else None
+        if opening is not None and fig_id is not None:
+            figure, skip_to = _figure_block(
+                lines, lineno - 1, opening.group("fence"), fig_id, chapter_id, check
+            )
+            if figure is not None:
+                chapter.figures.append(figure)
+            continue
         found = _directive(line)
         if found is None:
             continue

@@ -94,6 +94,16 @@ class ExerciseSpec:
         return any(p.dist not in ("value", "expr") for p in self.parameters)
 
 
+@dataclass(frozen=True)
+class ChapterFigure:
+    """A prose figure placed by a ```{figure} ID``` block: its registry id, the line of the
+    block and its caption (Markdown, the block's content)."""
+
+    id: str
+    line: int
+    caption: str
+
+
 @dataclass
 class Chapter:
     """A chapter as indexed from ``chapters/NN-slug.md`` (prose is read only when shown)."""
@@ -105,3 +115,4 @@ class Chapter:
     summary: str = ""
     exercises: list[str] = field(default_factory=list)
     exercise_lines: dict[str, int] = field(default_factory=dict)
+    figures: list[ChapterFigure] = field(default_factory=list)

@@ -51,6 +51,39 @@ def random_walk_path(
     return out
 
 
+INSET = 96.0  # side of the close-up of the end, in px
+
+
+def _sigma_inset(
+    end: tuple[float, float], intended: tuple[float, float], r: float, colour: str
+) -> list[str]:
+    """A close-up of the end of the drive at one scale on both axes: the plan view stretches
+    the sideways axis, where a circle would be drawn as a thin sliver, so the 1σ circle
+    (radius ``r`` m about the intended end) and the sample's end are drawn here, true to shape."""
+    x0, y0 = W - RIGHT - INSET, TOP
+    cx, cy = x0 + INSET / 2, y0 + INSET / 2 + 6
+    reach = max(r, math.hypot(end[0] - intended[0], end[1] - intended[1]), 1e-9) * 1.15
+    scale = (INSET / 2 - 8) / reach
+    ex, ey = cx + (end[0] - intended[0]) * scale, cy - (end[1] - intended[1]) * scale
+    return [
+        el("rect", x=x0, y=y0, width=INSET, height=INSET + 12, fill="#fff", stroke="#999"),
+        text(x0 + 4, y0 + 12, "end, true scale", fill="#333", font_size="10"),
+        el(
+            "circle",
+            cx=cx,
+            cy=cy,
+            r=r * scale,
+            fill="none",
+            stroke=colour,
+            stroke_dasharray="3 2",
+            stroke_width=1.5,
+        ),
+        el("circle", cx=cx, cy=cy, r=3.0, fill="#222"),
+        el("circle", cx=ex, cy=ey, r=3.5, fill=colour),
+        text(x0 + 4, y0 + INSET + 8, f"1σ = {num(r)} m", fill=colour, font_size="10"),
+    ]
+
+
 def drift_trajectories(
     steps: int,
     *,
@@ -81,7 +114,8 @@ def drift_trajectories(
         series.append(("random walk (one sample)", path, "#1f6fb2", "2 3"))
         facts.append(
             f"Random errors of {num(sigma)} m per step give a 1σ error of "
-            f"{num(sigma * math.sqrt(steps))} m after {steps} steps (σ·√k), shown as a circle."
+            f"{num(sigma * math.sqrt(steps))} m after {steps} steps (σ·√k), drawn as a circle "
+            "about the intended end in a close-up at the same scale on both axes."
         )
     believed_end = None
     if bias is not None:
@@ -104,7 +138,7 @@ def drift_trajectories(
     span_y = max(ymax - ymin, 1e-9 + 0.05 * (xmax - xmin))
     ymin, ymax = ymin - 0.1 * span_y, ymax + 0.1 * span_y
     span_x = max(xmax - xmin, 1e-9)
-    pw, ph = W - LEFT - RIGHT, H - TOP - BOTTOM
+    pw, ph = W - LEFT - RIGHT - (INSET + 12 if sigma is not None else 0), H - TOP - BOTTOM
 
     def sx(x: float) -> float:
         return LEFT + (x - xmin) / span_x * pw
@@ -146,19 +180,7 @@ def drift_trajectories(
         body.append(el("circle", cx=sx(ex), cy=sy(ey), r=4.0, fill=colour))
         legend.append((name, colour, dash))
         if name.startswith("random") and sigma is not None:
-            r = sigma * math.sqrt(steps)
-            body.append(
-                el(
-                    "ellipse",
-                    cx=sx(ex),
-                    cy=sy(ey),
-                    rx=r / span_x * pw,
-                    ry=r / (ymax - ymin) * ph,
-                    fill="none",
-                    stroke=colour,
-                    stroke_dasharray="1 2",
-                )
-            )
+            body += _sigma_inset(pts[-1], (length, 0.0), sigma * math.sqrt(steps), colour)
     if believed_end is not None:
         y0 = sy(0)
         body += [

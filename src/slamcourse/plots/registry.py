@@ -11,11 +11,18 @@ example). See docs/authoring.md, "Pictures".
 
 from __future__ import annotations
 
+import contextlib
+import hashlib
 import importlib
 import math
+import os
 import pkgutil
+import tempfile
+import threading
 from collections.abc import Iterable
+from pathlib import Path
 
+from slamcourse import cache
 from slamcourse.plots.drift import drift_trajectories
 from slamcourse.plots.geometry import observation_geometry
 from slamcourse.plots.occupancy import occupancy_grid, occupancy_ray
@@ -147,7 +154,85 @@ def has_plot(exercise_id: str, tags: Iterable[str], params: Params) -> bool:
     return _picture(exercise_id, tags, params) is not None
 
 
+_DRAWN: dict[str, str] = {}
+_DRAWN_LOCK = threading.Lock()
+_SOURCES: list[str] = []
+
+
+def _sources_digest() -> str:
+    """A digest of everything a figure is drawn from: the drawing and reference mathematics
+    (``plots/``, ``slam/``) and the bundled course's reference code and data files. Computed once
+    per process (about 2 MB of files, a few milliseconds)."""
+    if not _SOURCES:
+        from slamcourse.course.locate import bundled_course_root
+
+        package = Path(__file__).resolve().parent.parent
+        files = sorted((package / "plots").glob("*.py")) + sorted((package / "slam").glob("*.py"))
+        exercises = bundled_course_root() / "exercises"
+        files += sorted(exercises.glob("*/reference.py")) + sorted(exercises.glob("*/data/*"))
+        digest = hashlib.sha256()
+        for path in files:
+            with contextlib.suppress(OSError):
+                digest.update(path.name.encode() + b"\0" + path.read_bytes() + b"\0")
+        _SOURCES.append(digest.hexdigest())
+    return _SOURCES[0]
+
+
+def _cached_path(figure_id: str) -> Path | None:
+    from slamcourse.settings import cache_dir
+
+    root = cache_dir()
+    if root is None:
+        return None
+    key = hashlib.sha256(f"{_sources_digest()}\0{figure_id}".encode()).hexdigest()[:24]
+    return root / "figures" / f"{key}.svg"
+
+
+def _read_cached(path: Path | None) -> str | None:
+    if path is None:
+        return None
+    try:
+        svg = path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError):
+        return None
+    cache.touch(path)
+    return svg if svg.startswith("<svg") and svg.rstrip().endswith("</svg>") else None
+
+
+def _write_cached(path: Path | None, svg: str) -> None:
+    if path is None:
+        return
+    cache.evict_if_due()
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".fig-")
+        with os.fdopen(fd, "w", encoding="utf-8") as handle:
+            handle.write(svg)
+        os.replace(tmp, path)
+    except OSError:
+        return
+
+
 def figure_svg(figure_id: str) -> str | None:
-    """The SVG of a prose figure, or None when no chapter module defines ``figure_id``."""
+    """The SVG of a prose figure, or None when no chapter module defines ``figure_id``.
+
+    A figure draws the chapter's own fixed numbers, so it is drawn once: kept in this process
+    (the browser serves a chapter many times) and in the learner's cache (``figures/``), keyed
+    by the figure id and a digest of the code and data it is drawn from, so a figure that runs
+    an optimiser (sphere2500, INTEL with false loop closures) costs its seconds once per
+    installation, not once per server start, and an edited drawing is never served stale."""
+    with _DRAWN_LOCK:
+        svg = _DRAWN.get(figure_id)
+    if svg is not None:
+        return svg
     draw = FIGURES.get(figure_id)
-    return None if draw is None else draw()
+    if draw is None:
+        return None
+    path = _cached_path(figure_id)
+    svg = _read_cached(path)
+    if svg is None:
+        svg = draw()
+        _write_cached(path, svg)
+    with _DRAWN_LOCK:
+        _DRAWN[figure_id] = svg
+    return svg

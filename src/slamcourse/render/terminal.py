@@ -11,10 +11,11 @@ from __future__ import annotations
 
 import os
 
-from slamcourse.course.loader import directive_id
+from slamcourse.course.loader import directive_id, figure_id
 from slamcourse.render.math import _sanitize, latex_to_unicode, text_width
 
 __all__ = [
+    "figure_writer",
     "render_code_listing",
     "render_markdown",
     "style",
@@ -25,6 +26,7 @@ __all__ = [
 TYPE_CHECKING = False
 if TYPE_CHECKING:
     from collections.abc import Callable
+    from pathlib import Path
     from typing import TextIO
 
     from markdown_it import MarkdownIt
@@ -227,9 +229,15 @@ def _join(line: list[_Piece], color: bool) -> str:
 class _Markdown:
     """Walks markdown-it's syntax tree, producing lines of terminal text."""
 
-    def __init__(self, color: bool, exercise: Callable[[str], str] | None) -> None:
+    def __init__(
+        self,
+        color: bool,
+        exercise: Callable[[str], str] | None,
+        figure: Callable[[str], str | None] | None = None,
+    ) -> None:
         self.color = color
         self.exercise = exercise
+        self.figure = figure
         self.list_depth = 0
 
     # ---- inline
@@ -309,7 +317,7 @@ class _Markdown:
         if kind == "heading":
             return self.heading(node, width)
         if kind in ("fence", "code_block"):
-            return self.code(node)
+            return self.code(node, width)
         if kind in ("bullet_list", "ordered_list"):
             return self.list_block(node, width)
         if kind == "blockquote":
@@ -373,8 +381,29 @@ class _Markdown:
             out.append(style(("═" if level == 1 else "─") * rule_width, "dim", color=self.color))
         return out
 
-    def code(self, node: SyntaxTreeNode) -> list[str]:
+    def figure_block(self, fig_id: str, caption: str, width: int) -> list[str]:
+        """A prose figure as one paragraph: that it exists, its caption, where its SVG is."""
+        where = self.figure(fig_id) if self.figure is not None and fig_id else None
+        if where is not None:
+            tail = f"(picture written to {where})"
+        else:
+            tail = f"(slamcourse plot {fig_id} draws it)"
+        acc = _Inline()
+        acc.text("Figure:", ("bold",))
+        acc.end_word()
+        tree = _parse_tree(caption.strip())
+        for node in tree.children:
+            if node.type == "paragraph" and node.children:
+                self.inline(node.children[0].children, acc, ("italic",))
+                acc.end_word()
+        acc.atom(tail, ("dim",))
+        return [_join(line, self.color) for line in _wrap(acc.finish(), width)]
+
+    def code(self, node: SyntaxTreeNode, width: int = 80) -> list[str]:
         info = node.info.strip() if node.type == "fence" else ""
+        fig_id = figure_id(info)
+        if fig_id is not None:
+            return self.figure_block(fig_id, node.content, width)
         ex_id = directive_id(info)
         if ex_id is not None:
             if self.exercise is None:
@@ -513,23 +542,44 @@ def _plain_text(node: SyntaxTreeNode) -> str:
     return "".join(parts)
 
 
+def _parse_tree(md: str) -> SyntaxTreeNode:
+    from markdown_it.tree import SyntaxTreeNode
+
+    return SyntaxTreeNode(_parser().parse(_sanitize(md)))
+
+
+def figure_writer(workspace: Path) -> Callable[[str], str | None]:
+    """A ``figure`` callback for :func:`render_markdown`: draws the figure into
+    ``<workspace>/figures/`` and returns the file's path (None when it cannot be drawn)."""
+
+    def write(fig_id: str) -> str | None:
+        from slamcourse.plots.command import figure_file
+
+        path = figure_file(workspace, fig_id)
+        return None if path is None else str(path)
+
+    return write
+
+
 def render_markdown(
     md: str,
     *,
     width: int = 80,
     color: bool = False,
     exercise: Callable[[str], str] | None = None,
+    figure: Callable[[str], str | None] | None = None,
 ) -> str:
     """Render Markdown with ``$...$`` / ``$$...$$`` LaTeX math as terminal text.
 
     Paragraphs and list items are wrapped to ``width`` (a math span or code span is never split);
     code blocks are indented, not wrapped; display math is indented, matrices laid out as grids.
     A fenced block with info string ``{exercise} ID`` is replaced by ``exercise(ID)`` (or dropped
-    when ``exercise`` is None). YAML front matter is skipped. With ``color=False`` the output
-    holds no escape codes (control characters in the input are replaced by U+FFFD).
+    when ``exercise`` is None). A block ``{figure} ID`` (its content the caption) becomes one
+    paragraph: "Figure", the caption, and where ``figure(ID)`` wrote its SVG (a terminal shows
+    no pictures), or the command that draws it. YAML front matter is skipped. With
+    ``color=False`` the output holds no escape codes (control characters in the input are
+    replaced by U+FFFD).
     """
-    from markdown_it.tree import SyntaxTreeNode
-
-    tree = SyntaxTreeNode(_parser().parse(_sanitize(md)))
-    lines = _Markdown(color, exercise).blocks(tree.children, max(1, width))
+    tree = _parse_tree(md)
+    lines = _Markdown(color, exercise, figure).blocks(tree.children, max(1, width))
     return "\n".join(line.rstrip() for line in lines)
