@@ -47,28 +47,38 @@ def mistake_variables_dof(minutes: float, rate_hz: float, keyframe_every: int,
 # --- odometry uncertainty -------------------------------------------------------------------
 
 
-def odometry_step(step: float, distance_error_pct: float,
-                  heading_error_deg_per_m: float) -> list[float]:
-    """``[σ_pos (m), σ_θ (rad)]`` of one straight step."""
-    return list(cap.odometry_step_sigma(step, distance_error_pct / 100, heading_error_deg_per_m))
+def odometry_step(step: float, calibration: float, sigma_dist_cm: float,
+                  sigma_heading_deg: float) -> list[float]:
+    """``[σ_pos (m), σ_θ (rad)]`` of one straight step, from variances per metre."""
+    return list(cap.odometry_step_sigma_per_metre(step, calibration, sigma_dist_cm / 100,
+                                                  math.radians(sigma_heading_deg)))
 
 
-def mistake_step_degrees(step: float, distance_error_pct: float,
-                         heading_error_deg_per_m: float) -> list[float]:
+def mistake_step_linear(step: float, calibration: float, sigma_dist_cm: float,
+                        sigma_heading_deg: float) -> list[float]:
+    """The standard deviations scaled with the step length (a rate per metre)."""
+    r = step / calibration
+    return [sigma_dist_cm / 100 * r, math.radians(sigma_heading_deg) * r]
+
+
+def mistake_step_degrees(step: float, calibration: float, sigma_dist_cm: float,
+                         sigma_heading_deg: float) -> list[float]:
     """The heading error left in degrees."""
-    return [distance_error_pct / 100 * step, heading_error_deg_per_m * step]
+    r = math.sqrt(step / calibration)
+    return [sigma_dist_cm / 100 * r, sigma_heading_deg * r]
 
 
-def mistake_step_per_metre(step: float, distance_error_pct: float,
-                           heading_error_deg_per_m: float) -> list[float]:
-    """The heading error per metre taken as the error per step (not scaled by the distance)."""
-    return [distance_error_pct / 100 * step, math.radians(heading_error_deg_per_m)]
+def mistake_step_calibration_value(step: float, calibration: float, sigma_dist_cm: float,
+                                   sigma_heading_deg: float) -> list[float]:
+    """The calibration drive's errors taken as the step's."""
+    return [sigma_dist_cm / 100, math.radians(sigma_heading_deg)]
 
 
-def mistake_step_percent(step: float, distance_error_pct: float,
-                         heading_error_deg_per_m: float) -> list[float]:
-    """The percentage used as a fraction (1 % read as 1)."""
-    return [distance_error_pct * step, math.radians(heading_error_deg_per_m * step)]
+def mistake_step_centimetres(step: float, calibration: float, sigma_dist_cm: float,
+                             sigma_heading_deg: float) -> list[float]:
+    """The position uncertainty left in centimetres."""
+    r = math.sqrt(step / calibration)
+    return [sigma_dist_cm * r, math.radians(sigma_heading_deg) * r]
 
 
 def odometry_accumulated(sigma_pos: float, sigma_theta: float, steps: int) -> list[float]:

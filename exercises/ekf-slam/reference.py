@@ -390,3 +390,164 @@ def update_valid(P: ArrayLike, H: ArrayLike, R: ArrayLike) -> bool:
     if used and not any(used <= {3 + 2 * j, 4 + 2 * j} for j in range((p.shape[0] - 3) // 2)):
         return False  # the prompt: nonzero only in the pose's columns and one landmark's two
     return _positive_definite(p, p.shape[0]) and _positive_definite(R, 2)
+
+
+# --- code: one whole EKF-SLAM step (issue 16) -------------------------------------------------
+
+from slamcourse.slam import ekf as _ekf  # noqa: E402
+from slamcourse.slam.se2 import wrap_angle as _wrap  # noqa: E402
+
+
+def slam_predict(
+    mu: ArrayLike, P: ArrayLike, u: Sequence[float], M: ArrayLike
+) -> tuple[Matrix, Matrix]:
+    """The prediction on the whole state: the pose moves by ``u``, ``P`` becomes
+    ``F P Fᵀ + F_x V M Vᵀ F_xᵀ`` with ``F = blockdiag(G, I)``; landmarks stay where they are."""
+    m = np.array(mu, dtype=float)
+    p = np.array(P, dtype=float)
+    pose = [float(v) for v in m[:3]]
+    g = _ekf.jacobian_state(pose, u)
+    v = _ekf.jacobian_control(pose, u)
+    m[:3] = _ekf.odometry_step(pose, u)
+    p[:3, :] = g @ p[:3, :]
+    p[:, :3] = p[:, :3] @ g.T
+    p[:3, :3] += v @ np.asarray(M, dtype=float) @ v.T
+    return m, p
+
+
+def ekf_slam_step(
+    mu: ArrayLike,
+    Sigma: ArrayLike,
+    u: Sequence[float],
+    M: ArrayLike,
+    z: ArrayLike,
+    ids: Sequence[int],
+    R: ArrayLike,
+) -> Matrix:
+    """Predict with ``u``, then each measurement in turn: an update for a mapped landmark,
+    augmentation for a new one. Returns ``[μ'; Σ']`` stacked, shape (n' + 1, n')."""
+    m, p = slam_predict(mu, Sigma, u, M)
+    for zk, j in zip(np.asarray(z, dtype=float).reshape(-1, 2), ids, strict=True):
+        j = int(j)
+        if 3 + 2 * j < m.size:
+            h = ekfslam.observe(m[:3], m[3 + 2 * j : 5 + 2 * j])
+            m, p = ekfslam.update(m, p, zk, h, ekfslam.observation_jacobian(m, j), R)
+        else:
+            m, p = ekfslam.augment(m, p, zk, R)
+    return np.vstack([m, p])
+
+
+def ekf_step_inputs() -> Any:
+    """A state with 1–3 landmarks within 20 m of the robot, a covariance built like
+    EKF-SLAM's (pose σ 0.05–0.5 m and 0.01–0.2 rad, landmarks tied to it), a motion
+    (turns within ±π, 0–3 m), its 3×3 noise, 1–3 measurements of distinct landmarks (a
+    mapped one or the next new one, at most two new) taken from a true pose near the
+    predicted one, and a possibly correlated ``R``."""
+    from hypothesis import strategies as st
+
+    from slamcourse.grading.strategies import real
+
+    @st.composite
+    def draw(draw: Any) -> dict[str, Any]:
+        rng = np.random.default_rng(draw(st.integers(0, 2**32 - 1)))
+        known = draw(st.integers(1, 3))
+        pose = [draw(real(-20, 20)), draw(real(-20, 20)), draw(real(-math.pi, math.pi))]
+        mu = list(pose)
+        for _ in range(known):
+            d, a = draw(real(2.0, 15.0)), draw(real(-math.pi, math.pi))
+            mu += [pose[0] + d * math.cos(a), pose[1] + d * math.sin(a)]
+        n = len(mu)
+        sxy, sth = draw(real(0.05, 0.5)), draw(real(0.01, 0.2))
+        d = np.empty(n)
+        d[:3] = [sxy**2, sxy**2, sth**2]
+        d[3:] = rng.uniform(0.05, 0.5, n - 3) ** 2
+        a = np.eye(n)
+        for k in range(3, n, 2):
+            arm = np.asarray(mu[k : k + 2]) - np.asarray(pose[:2])
+            a[k : k + 2, :3] = rng.uniform(0, 1) * np.array([[1, 0, -arm[1]], [0, 1, arm[0]]])
+        sigma = a @ np.diag(d) @ a.T
+        u = [draw(real(-math.pi, math.pi)), draw(real(0.0, 3.0)), draw(real(-math.pi, math.pi))]
+        motion = np.diag([draw(real(1e-4, 0.01)), draw(real(1e-4, 0.05)), draw(real(1e-4, 0.01))])
+        predicted = _ekf.odometry_step(pose, u)
+        truth = np.asarray(predicted) + rng.normal(size=3) * [0.1, 0.1, 0.03]
+        sr, sb = draw(real(0.05, 0.3)), draw(real(0.005, 0.03))
+        rho = draw(real(-0.5, 0.5))
+        r = np.array([[sr * sr, rho * sr * sb], [rho * sr * sb, sb * sb]])
+        count = draw(st.integers(1, 3))
+        new = draw(st.integers(0, min(2, count)))
+        order = draw(st.permutations(list(range(known))))[: count - new]
+        ids = [int(j) for j in order] + [known + k for k in range(new)]
+        ids = draw(st.permutations(ids))
+        # new landmarks take the ids known, known + 1, ... in the order they first appear
+        renumber = iter(range(known, known + new))
+        ids = [j if j < known else next(renumber) for j in ids]
+        z = []
+        for j in ids:
+            if j < known:
+                spot = np.asarray(mu[3 + 2 * j : 5 + 2 * j]) + rng.normal(size=2) * 0.05
+            else:
+                dist, ang = rng.uniform(2.0, 15.0), rng.uniform(-math.pi, math.pi)
+                spot = truth[:2] + dist * np.array([math.cos(ang), math.sin(ang)])
+            h = ekfslam.observe(truth, spot) + np.linalg.cholesky(r) @ rng.normal(size=2)
+            z.append([float(h[0]), _wrap(float(h[1]))])
+        return {
+            "mu": [float(v) for v in mu],
+            "Sigma": sigma.tolist(),
+            "u": u,
+            "M": motion.tolist(),
+            "z": z,
+            "ids": ids,
+            "R": r.tolist(),
+        }
+
+    return draw()
+
+
+def ekf_step_valid(
+    mu: ArrayLike,
+    Sigma: ArrayLike,
+    u: Sequence[float],
+    M: ArrayLike,
+    z: ArrayLike,
+    ids: Sequence[int],
+    R: ArrayLike,
+) -> bool:
+    """``ekf_slam_step``'s domain: 1–3 mapped landmarks, ``Sigma``, ``M``, ``R`` symmetric
+    positive definite, turns in [−π, π] and a drive of 0–3 m, 1–3 measurements (range
+    0.5–30 m, bearing in [−π, π]) with distinct whole-number ids, each a mapped landmark or
+    the next new one; every landmark at least 0.5 m from the robot whenever it is measured."""
+    try:
+        m = np.asarray(mu, dtype=float)
+        zs = np.asarray(z, dtype=float)
+        uu = [float(v) for v in u]
+    except (TypeError, ValueError):
+        return False
+    if m.ndim != 1 or m.size not in (5, 7, 9) or len(uu) != 3:
+        return False
+    if abs(uu[0]) > math.pi or abs(uu[2]) > math.pi or not 0 <= uu[1] <= 3:
+        return False
+    if zs.ndim != 2 or zs.shape[1] != 2 or not 1 <= zs.shape[0] <= 3 or len(ids) != len(zs):
+        return False
+    if np.any(zs[:, 0] < 0.5) or np.any(zs[:, 0] > 30) or np.any(np.abs(zs[:, 1]) > math.pi):
+        return False
+    if any(isinstance(j, float) and not float(j).is_integer() for j in ids):
+        return False
+    known = (m.size - 3) // 2
+    seen: set[int] = set()
+    nxt = known
+    for j in (int(v) for v in ids):
+        if j in seen or j < 0 or j > nxt:
+            return False
+        seen.add(j)
+        nxt += j == nxt
+    if not all(_positive_definite(a, k) for a, k in ((Sigma, m.size), (M, 3), (R, 2))):
+        return False
+    state, _ = slam_predict(m, Sigma, uu, M)
+    for zk, j in zip(zs, ids, strict=True):
+        j = int(j)
+        if 3 + 2 * j < state.size:
+            if math.dist(state[:2], state[3 + 2 * j : 5 + 2 * j]) < 0.5:
+                return False
+        state = np.concatenate([state, ekfslam.inverse_observation(state[:3], zk)])
+    out = ekf_slam_step(m, Sigma, uu, M, zs, ids, R)
+    return bool(np.all(np.isfinite(out)) and abs(abs(out[0, 2]) - math.pi) > 1e-9)

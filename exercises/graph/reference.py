@@ -196,13 +196,15 @@ def mistake_first_diagonal_no_loop(prior: float, odo_info: float, loop_info: flo
     return prior + odo_info
 
 
-def loop_graph_estimate(prior: float, xi0: float, xi1: float, xi2: float) -> NDArray[np.float64]:
+def loop_graph_estimate(prior: float, xi0: float, xi1: float, xi2: float,
+    **_measurements: float) -> NDArray[np.float64]:
     """``μ`` solving ``Ω μ = ξ`` for the lesson's 3-pose loop (all edges ω = 1)."""
     return solve_information(loop_graph_omega(3, prior, 1.0, 1.0).tolist(), [xi0, xi1, xi2])
 
 
 def mistake_estimate_diagonal_only(prior: float, xi0: float, xi1: float,
-                                   xi2: float) -> NDArray[np.float64]:
+                                   xi2: float,
+    **_measurements: float) -> NDArray[np.float64]:
     """``ξ_i / Ω_ii``: the couplings between the poses ignored."""
     omega = loop_graph_omega(3, prior, 1.0, 1.0)
     return np.array([xi0, xi1, xi2]) / np.diag(omega)
@@ -261,19 +263,22 @@ def mistake_loop_omega_no_loop(
     return _loop_omega(prior, odo_info, 0.0) + 0.0  # + 0.0 turns −0.0 into 0.0
 
 
-def loop_first_estimate(prior: float, xi0: float, xi1: float, xi2: float) -> float:
+def loop_first_estimate(prior: float, xi0: float, xi1: float, xi2: float,
+    **_measurements: float) -> float:
     """``μ₀`` of the lesson's 3-pose loop (all edges ω = 1), from a Cholesky solve."""
     from slamcourse.slam.graph import solve
 
     return float(solve(_loop_omega(prior, 1.0, 1.0), [xi0, xi1, xi2])[0])
 
 
-def mistake_first_estimate_diagonal(prior: float, xi0: float, xi1: float, xi2: float) -> float:
+def mistake_first_estimate_diagonal(prior: float, xi0: float, xi1: float, xi2: float,
+    **_measurements: float) -> float:
     """``ξ₀ / Ω₀₀``: the couplings to the other poses ignored."""
     return xi0 / (prior + 2.0)
 
 
-def mistake_first_estimate_prior_only(prior: float, xi0: float, xi1: float, xi2: float) -> float:
+def mistake_first_estimate_prior_only(prior: float, xi0: float, xi1: float, xi2: float,
+    **_measurements: float) -> float:
     """``ξ₀ / ω₀``: ξ₀ divided by the prior's information alone."""
     return xi0 / prior
 
@@ -391,3 +396,74 @@ def information_system_valid(omega: Sequence[Sequence[float]], xi: Sequence[floa
     except np.linalg.LinAlgError:
         return False
     return bool(np.linalg.cond(a) < 1e7 and np.all(np.isfinite(b)))
+
+
+# --- one edge's contribution, expanded (issue 16) ---------------------------------------------
+
+
+def edge_omega(i: int, j: int, w: float, d: float, n: int = 4) -> list[list[float]]:
+    """What the edge ``ω (x_j − x_i − d)²`` adds to ``Ω`` (n × n): half the second derivative
+    of the square, ``+ω`` at (i, i) and (j, j), ``−ω`` at (i, j) and (j, i)."""
+    i, j = int(i), int(j)
+    out = np.zeros((int(n), int(n)))
+    out[i, i] += w
+    out[j, j] += w
+    out[i, j] -= w
+    out[j, i] -= w
+    return out.tolist()
+
+
+def edge_xi(i: int, j: int, w: float, d: float, n: int = 4) -> list[float]:
+    """What the edge adds to ``ξ`` (n,): minus half the gradient of the square at ``x = 0``,
+    ``−ω d`` at ``i`` and ``+ω d`` at ``j``."""
+    out = np.zeros(int(n))
+    out[int(i)] -= w * d
+    out[int(j)] += w * d
+    return out.tolist()
+
+
+def edge_cost_gradient(i: int, j: int, w: float, d: float, x: Sequence[float]) -> list[float]:
+    """``∇ ω (x_j − x_i − d)²`` at ``x``: for checking ``Ω x − ξ`` = half of it."""
+    r = float(x[int(j)]) - float(x[int(i)]) - d
+    g = np.zeros(len(x))
+    g[int(i)] -= 2 * w * r
+    g[int(j)] += 2 * w * r
+    return g.tolist()
+
+
+def mistake_edge_omega_doubled(i: int, j: int, w: float, d: float, n: int = 4) -> list[list[float]]:
+    """The factor 2 of the derivative kept: ``±2ω``."""
+    return (2 * np.array(edge_omega(i, j, w, d, n))).tolist()
+
+
+def mistake_edge_omega_plus(i: int, j: int, w: float, d: float, n: int = 4) -> list[list[float]]:
+    """``+ω`` off the diagonal as well."""
+    return np.abs(np.array(edge_omega(i, j, w, d, n))).tolist()
+
+
+def mistake_edge_omega_one_corner(
+    i: int, j: int, w: float, d: float, n: int = 4
+) -> list[list[float]]:
+    """The cross term ``−2ω x_i x_j`` written into one corner, ``(i, j)``, instead of shared."""
+    out = np.zeros((int(n), int(n)))
+    out[int(i), int(i)] = w
+    out[int(j), int(j)] = w
+    out[int(i), int(j)] = -2 * w
+    return out.tolist()
+
+
+def mistake_edge_xi_signs(i: int, j: int, w: float, d: float, n: int = 4) -> list[float]:
+    """``+ω d`` at ``i`` and ``−ω d`` at ``j``: the signs swapped."""
+    return (-np.array(edge_xi(i, j, w, d, n))).tolist()
+
+
+def mistake_edge_xi_no_information(i: int, j: int, w: float, d: float, n: int = 4) -> list[float]:
+    """``∓d`` without the information ``ω``."""
+    return (np.array(edge_xi(i, j, w, d, n)) / w).tolist()
+
+
+def mistake_edge_xi_target_only(i: int, j: int, w: float, d: float, n: int = 4) -> list[float]:
+    """Only ``+ω d`` at ``j``: the edge's own start forgotten."""
+    out = np.zeros(int(n))
+    out[int(j)] = w * d
+    return out.tolist()

@@ -294,3 +294,49 @@ def ray_valid(log_odds: Sequence[float], hit_index: int, l_occ: float, l_free: f
     if not 1 <= len(log_odds) <= 60 or not 0 <= hit_index < len(log_odds):
         return False
     return all(-10 <= v <= 10 for v in log_odds) and 0.2 <= l_occ <= 6.9 and -6.9 <= l_free <= -0.2
+
+
+# --- a prior other than one half (issue 16) ---------------------------------------------------
+
+
+def _logit(p: float) -> float:
+    return math.log(p / (1 - p))
+
+
+def _pair(log_odds: float) -> list[float]:
+    """``[l, p]``: log-odds and the probability it stands for."""
+    return [log_odds, 1 / (1 + math.exp(-log_odds))]
+
+
+def prior_update(p0: float, p1: float, p2: float, **_derived: float) -> list[float]:
+    """``[l, p]`` after two readings with inverse-sensor-model outputs ``p1``, ``p2`` from a
+    prior ``p0``: ``l = l₀ + (logit p₁ − l₀) + (logit p₂ − l₀)``."""
+    l0 = _logit(p0)
+    return _pair(l0 + (_logit(p1) - l0) + (_logit(p2) - l0))
+
+
+def prior_update_bayes(p0: float, p1: float, p2: float) -> float:
+    """The probability by Bayes' rule on odds, no logarithm: each reading's likelihood ratio
+    ``p(z|m)/p(z|¬m)`` is its posterior odds over the prior odds."""
+    prior_odds = p0 / (1 - p0)
+    odds = prior_odds
+    for p in (p1, p2):
+        odds *= (p / (1 - p)) / prior_odds
+    return odds / (1 + odds)
+
+
+def mistake_prior_not_subtracted(p0: float, p1: float, p2: float, **_derived: float) -> list[float]:
+    """``l = l₀ + logit p₁ + logit p₂``: the prior counted three times."""
+    return _pair(_logit(p0) + _logit(p1) + _logit(p2))
+
+
+def mistake_prior_ignored(p0: float, p1: float, p2: float, **_derived: float) -> list[float]:
+    """``l = logit p₁ + logit p₂``: started from 0 as if the prior were one half."""
+    return _pair(_logit(p1) + _logit(p2))
+
+
+def mistake_prior_start_zero(p0: float, p1: float, p2: float, **_derived: float) -> list[float]:
+    """Started from ``l = 0`` but subtracted ``l₀`` at each reading: the prior removed once
+    too often."""
+    l0 = _logit(p0)
+    return _pair(_logit(p1) - l0 + _logit(p2) - l0)

@@ -44,24 +44,34 @@ def intel_figures() -> dict[str, int]:
     }
 
 
-# --- star: hub first ---------------------------------------------------------------------------
+# --- bundle adjustment: landmarks first (the Schur complement) ---------------------------------
 
 
-def star_hub_first(leaves: int) -> int:
-    return so.fill_count(leaves + 1, so.star(leaves), list(range(leaves + 1)))
+def ba_edges(poses: int, landmarks: int) -> list[so.Edge]:
+    """Poses ``0 … P−1`` in an odometry chain; landmarks ``P … P+L−1``, each seen from every
+    pose."""
+    return [*so.chain(poses), *((p, poses + k) for k in range(landmarks) for p in range(poses))]
 
 
-def mistake_star_ordered_pairs(leaves: int) -> int:
-    return leaves * (leaves - 1)
+def landmarks_first(poses: int, landmarks: int) -> int:
+    order = [*range(poses, poses + landmarks), *range(poses)]
+    return so.fill_count(poses + landmarks, ba_edges(poses, landmarks), order)
 
 
-def mistake_star_hub_last(leaves: int) -> int:
-    return so.fill_count(leaves + 1, so.star(leaves), [*range(1, leaves + 1), 0])
+def mistake_landmarks_first_all_pairs(poses: int, landmarks: int) -> int:
+    """Every pair of poses counted, the odometry pairs included."""
+    return poses * (poses - 1) // 2
 
 
-def mistake_star_nonzeros(leaves: int) -> int:
-    """The nonzeros of ``L`` instead of the fill: the diagonal and the star's edges added."""
-    return so.factor_nonzeros(leaves + 1, so.star(leaves), list(range(leaves + 1)))
+def mistake_landmarks_first_per_landmark(poses: int, landmarks: int) -> int:
+    """The first landmark's fill counted once per landmark."""
+    return landmarks * landmarks_first(poses, landmarks)
+
+
+def mistake_landmarks_first_poses_first(poses: int, landmarks: int) -> int:
+    """The fill of the other order: the poses first, then the landmarks."""
+    order = [*range(poses), *range(poses, poses + landmarks)]
+    return so.fill_count(poses + landmarks, ba_edges(poses, landmarks), order)
 
 
 # --- chain with one loop closure ----------------------------------------------------------------

@@ -527,3 +527,227 @@ def ransac_iterations_valid(inlier_ratio: float, sample_size: int, confidence: f
     ratio = ransac_ratio(inlier_ratio, sample_size, confidence)
     margin = 1e-7 + 1e-9 * ratio
     return ratio - math.floor(ratio) > margin and math.ceil(ratio) - ratio > margin
+
+
+# --- Hartley normalisation (issue 16) ---------------------------------------------------------
+
+
+def _hartley_points(
+    x1: float, y1: float, x2: float, y2: float, x3: float, y3: float, x4: float, y4: float
+) -> NDArray[np.float64]:
+    return np.array([[x1, y1], [x2, y2], [x3, y3], [x4, y4]], dtype=float)
+
+
+def _similarity(scale: float, cx: float, cy: float) -> list[list[float]]:
+    """``T = [[s, 0, −s·cx], [0, s, −s·cy], [0, 0, 1]]``: translate by −c, then scale by s."""
+    return [[scale, 0.0, -scale * cx], [0.0, scale, -scale * cy], [0.0, 0.0, 1.0]]
+
+
+def hartley_matrix(
+    x1: float,
+    y1: float,
+    x2: float,
+    y2: float,
+    x3: float,
+    y3: float,
+    x4: float,
+    y4: float,
+    **_derived: float,
+) -> list[list[float]]:
+    """Hartley's 3×3 normalising transform of four pixel points: the centroid moves to the
+    origin and the mean distance from it becomes √2."""
+    pts = _hartley_points(x1, y1, x2, y2, x3, y3, x4, y4)
+    c = pts.mean(axis=0)
+    mean_distance = float(np.mean(np.hypot(*(pts - c).T)))
+    return _similarity(math.sqrt(2) / mean_distance, float(c[0]), float(c[1]))
+
+
+def mistake_hartley_unit_distance(
+    x1: float,
+    y1: float,
+    x2: float,
+    y2: float,
+    x3: float,
+    y3: float,
+    x4: float,
+    y4: float,
+    **_derived: float,
+) -> list[list[float]]:
+    """Mean distance scaled to 1 instead of √2."""
+    pts = _hartley_points(x1, y1, x2, y2, x3, y3, x4, y4)
+    c = pts.mean(axis=0)
+    return _similarity(1.0 / float(np.mean(np.hypot(*(pts - c).T))), float(c[0]), float(c[1]))
+
+
+def mistake_hartley_rms(
+    x1: float,
+    y1: float,
+    x2: float,
+    y2: float,
+    x3: float,
+    y3: float,
+    x4: float,
+    y4: float,
+    **_derived: float,
+) -> list[list[float]]:
+    """The root-mean-square distance made √2 instead of the mean distance."""
+    pts = _hartley_points(x1, y1, x2, y2, x3, y3, x4, y4)
+    c = pts.mean(axis=0)
+    rms = math.sqrt(float(np.mean(np.sum((pts - c) ** 2, axis=1))))
+    return _similarity(math.sqrt(2) / rms, float(c[0]), float(c[1]))
+
+
+def mistake_hartley_translation_unscaled(
+    x1: float,
+    y1: float,
+    x2: float,
+    y2: float,
+    x3: float,
+    y3: float,
+    x4: float,
+    y4: float,
+    **_derived: float,
+) -> list[list[float]]:
+    """The last column −c instead of −s·c: the translation written as if it came after the
+    scaling."""
+    t = hartley_matrix(x1, y1, x2, y2, x3, y3, x4, y4)
+    pts = _hartley_points(x1, y1, x2, y2, x3, y3, x4, y4)
+    c = pts.mean(axis=0)
+    return [[t[0][0], 0.0, -float(c[0])], [0.0, t[1][1], -float(c[1])], [0.0, 0.0, 1.0]]
+
+
+def mistake_hartley_plus_centroid(
+    x1: float,
+    y1: float,
+    x2: float,
+    y2: float,
+    x3: float,
+    y3: float,
+    x4: float,
+    y4: float,
+    **_derived: float,
+) -> list[list[float]]:
+    """The centroid added instead of subtracted."""
+    t = hartley_matrix(x1, y1, x2, y2, x3, y3, x4, y4)
+    return [[t[0][0], 0.0, -t[0][2]], [0.0, t[1][1], -t[1][2]], [0.0, 0.0, 1.0]]
+
+
+def hartley_rms_gap(
+    x1: float,
+    y1: float,
+    x2: float,
+    y2: float,
+    x3: float,
+    y3: float,
+    x4: float,
+    y4: float,
+    **_derived: float,
+) -> float:
+    """RMS over mean distance from the centroid, minus 1 (0 when all distances are equal)."""
+    pts = _hartley_points(x1, y1, x2, y2, x3, y3, x4, y4)
+    d = np.hypot(*(pts - pts.mean(axis=0)).T)
+    return float(math.sqrt(float(np.mean(d**2))) / float(np.mean(d)) - 1.0)
+
+
+# --- code: decompose_essential (issue 16) -----------------------------------------------------
+
+_W = np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
+
+
+def essential_candidates(E: Matrix) -> list[tuple[NDArray[np.float64], NDArray[np.float64]]]:
+    """The four ``(R, t)`` of ``E = U diag(σ, σ, 0) Vᵀ``: ``R ∈ {U W Vᵀ, U Wᵀ Vᵀ}``,
+    ``t = ±u₃`` (unit length), with ``U`` and ``V`` turned into rotations first."""
+    u, _, vt = np.linalg.svd(np.asarray(E, dtype=float))
+    if np.linalg.det(u) < 0:
+        u = -u
+    if np.linalg.det(vt) < 0:
+        vt = -vt
+    out = []
+    for r in (u @ _W @ vt, u @ _W.T @ vt):
+        for t in (u[:, 2], -u[:, 2]):
+            out.append((r, t))
+    return out
+
+
+def two_view_depths(R: Matrix, t: Vector, x1: Vector, x2: Vector) -> tuple[float, float]:
+    """Depths ``(z₁, z₂)`` with ``z₂ x₂ = z₁ R x₁ + t`` (least squares; exact without noise)."""
+    a = np.column_stack(
+        [-(np.asarray(R, dtype=float) @ np.asarray(x1, dtype=float)), np.asarray(x2, dtype=float)]
+    )
+    z, *_ = np.linalg.lstsq(a, np.asarray(t, dtype=float), rcond=None)
+    return float(z[0]), float(z[1])
+
+
+def decompose_essential(E: Matrix, x1: Vector, x2: Vector) -> NDArray[np.float64]:
+    """``[R | t]`` (3 × 4, ``‖t‖ = 1``) with ``X₂ = R X₁ + t``: the one of the four candidates
+    that puts the point seen at ``x1`` ↔ ``x2`` in front of both cameras."""
+    for r, t in essential_candidates(E):
+        z1, z2 = two_view_depths(r, t, x1, x2)
+        if z1 > 0 and z2 > 0:
+            return np.column_stack([r, t])
+    raise ValueError("no candidate puts the point in front of both cameras")
+
+
+def _rotation_axis_angle(axis: NDArray[np.float64], angle: float) -> NDArray[np.float64]:
+    k = axis / np.linalg.norm(axis)
+    kx = skew(k)
+    return np.eye(3) + math.sin(angle) * kx + (1 - math.cos(angle)) * kx @ kx
+
+
+def decompose_inputs() -> Any:
+    """A relative pose (rotation of up to 0.6 rad about any axis, a translation in any
+    direction), ``E = s·[t]×R`` with a scale ``s`` of either sign (0.2 to 5 in size), and one
+    noise-free correspondence of a point 2–20 m in front of both cameras."""
+    from hypothesis import strategies as st
+
+    from slamcourse.grading.strategies import real
+
+    @st.composite
+    def draw(draw: Any) -> dict[str, Any]:
+        axis = np.array([draw(real(-1, 1)) for _ in range(3)])
+        if np.linalg.norm(axis) < 0.1:
+            axis = np.array([0.0, 1.0, 0.0])
+        r = _rotation_axis_angle(axis, draw(real(0.0, 0.6)))
+        t = np.array([draw(real(-1, 1)) for _ in range(3)])
+        if np.linalg.norm(t) < 0.1:
+            t = np.array([1.0, 0.0, 0.0])
+        t = t / np.linalg.norm(t) * draw(real(0.2, 2.0))
+        s = draw(real(0.2, 5.0)) * draw(st.sampled_from([1.0, -1.0]))
+        depth = draw(real(2.0, 20.0))
+        p1 = np.array([draw(real(-0.5, 0.5)) * depth, draw(real(-0.4, 0.4)) * depth, depth])
+        p2 = r @ p1 + t
+        e = s * skew(t) @ r
+        return {"E": e.tolist(), "x1": (p1 / p1[2]).tolist(), "x2": (p2 / p2[2]).tolist()}
+
+    return draw()
+
+
+def decompose_valid(E: Matrix, x1: Vector, x2: Vector) -> bool:
+    """``decompose_essential``'s domain: ``E`` an essential matrix (singular values σ, σ, 0 to
+    10⁻⁹ relative, 0.05 ≤ σ ≤ 20), ``x1``, ``x2`` normalised points (third entry 1, others within
+    ±2) that satisfy ``x2ᵀ E x1 = 0`` to 10⁻⁹, and exactly one candidate with both depths
+    positive, each depth at least 0.5, the two rays at least 0.01 rad apart, and every other candidate 0.01 or more behind a camera."""
+    try:
+        e = np.asarray(E, dtype=float)
+        a, b = np.asarray(x1, dtype=float), np.asarray(x2, dtype=float)
+    except (TypeError, ValueError):
+        return False
+    if e.shape != (3, 3) or a.shape != (3,) or b.shape != (3,) or not np.all(np.isfinite(e)):
+        return False
+    if a[2] != 1 or b[2] != 1 or np.any(np.abs(a[:2]) > 2) or np.any(np.abs(b[:2]) > 2):
+        return False
+    s = np.linalg.svd(e, compute_uv=False)
+    if not (0.05 <= s[0] <= 20 and s[0] - s[1] <= 1e-9 * s[0] and s[2] <= 1e-9 * s[0]):
+        return False
+    if abs(float(b @ e @ a)) > 1e-9 * s[0]:
+        return False
+    ahead = []
+    for r, t in essential_candidates(e):
+        z1, z2 = two_view_depths(r, t, a, b)
+        if z1 > 0 and z2 > 0:
+            ray = r @ a
+            parallax = np.linalg.norm(np.cross(b, ray)) / (np.linalg.norm(b) * np.linalg.norm(ray))
+            ahead.append(min(z1, z2) if parallax > 0.01 else 0.0)
+        elif min(z1, z2) > -0.01:
+            return False
+    return len(ahead) == 1 and ahead[0] >= 0.5

@@ -261,3 +261,33 @@ def test_grade_refuses_without_isolation_unless_allowed(
     assert main(["grade", "--merge-csv", str(tmp_path / "a.csv"), "--csv", str(merged)]) == 0
     assert merged.read_text() == (tmp_path / "a.csv").read_text()
     assert main(["grade", "--merge-csv", str(tmp_path / "nope.csv"), "--csv", str(merged)]) == 2
+
+
+def test_processes_take_the_largest_submissions_first(tmp_path: Path) -> None:
+    """Longest-processing-time first: a batch does not end on one long submission while the
+    other processes idle. Most code files first, then the most bytes; ties keep the given order
+    (results are still reported in the order given)."""
+    import zipfile
+
+    from slamcourse.batch.grade import _largest_first
+
+    def archive(name: str, files: dict[str, int]) -> Path:
+        path = tmp_path / name
+        with zipfile.ZipFile(path, "w") as z:
+            for inner, size in files.items():
+                z.writestr(inner, "x" * size)
+        return path
+
+    folder = tmp_path / "folder"
+    (folder / "code").mkdir(parents=True)
+    for k in range(3):
+        (folder / "code" / f"e{k}.py").write_text("pass\n")
+    paths = [
+        archive("text-only.zip", {"submission.json": 5000}),
+        archive("two-code.zip", {"submission.json": 10, "code/a.py": 10, "code/b.py": 10}),
+        archive("one-code.zip", {"submission.json": 10, "code/a.py": 9000}),
+        folder,
+        tmp_path / "missing.zip",
+        archive("two-code-big.zip", {"submission.json": 10, "code/a.py": 900, "code/b.py": 10}),
+    ]
+    assert _largest_first(paths) == [3, 5, 1, 2, 0, 4]

@@ -92,6 +92,8 @@ def _gate_choice() -> str:
 
 
 CANONICAL: dict[str, Any] = {
+    "graph/edge-omega": [[0, 0, 0, 0], [0, 4, 0, -4], [0, 0, 0, 0], [0, -4, 0, 4]],
+    "graph/edge-xi": [0, -10, 0, 10],
     # chapter 3: association
     "association/mahalanobis-scalar": 0.5**2 / 0.25,
     "association/mahalanobis-2d": 0.36 + 0.81,

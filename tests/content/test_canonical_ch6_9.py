@@ -84,6 +84,12 @@ def chi2_1_quantile(p: float) -> float:
 
 # exercise id → value derived by hand (the comment says how)
 EXPECTED: dict[str, Any] = {
+    "occupancy/prior-update": [math.log(108 / 7), 108 / 115],
+    "vision/hartley-normalise": (lambda s: [[s, 0, -375 * s], [0, s, -205 * s], [0, 0, 1]])(
+        4
+        * math.sqrt(2)
+        / (math.sqrt(133250) + math.sqrt(63850) + math.sqrt(80450) + math.sqrt(7650))
+    ),
     # --- vision ---
     "vision/essential-dof": 3 + 3 - 1,  # rotation + translation − scale
     "vision/essential-singular-values": [2.0, 2.0, 0.0],  # |t| = |(1.6, 0, 1.2)| = 2, twice

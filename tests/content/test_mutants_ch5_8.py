@@ -66,7 +66,7 @@ def _grade(exercise_id: str, path: Path, home: Path, monkeypatch: pytest.MonkeyP
 
 
 def test_every_code_exercise_has_mutants_and_variants() -> None:
-    assert len(CODE_EXERCISES) == 9
+    assert len(CODE_EXERCISES) == 10
     for exercise_id in CODE_EXERCISES:
         mutants = [p for e, p in MUTANTS if e == exercise_id]
         variants = [p for e, p in VARIANTS if e == exercise_id]

@@ -25,6 +25,7 @@ import re
 import shutil
 import tempfile
 import time
+import zipfile
 from collections.abc import Callable, Sequence
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass, field
@@ -577,7 +578,7 @@ def grade_all(
             shared = SharedTests(options.secret, options.hidden_runs)
             builds = {
                 pool.submit(build_tests, root, ex, options.secret, options.hidden_runs): ex
-                for ex in code_ids
+                for ex in sorted(code_ids, key=lambda ex: _build_cost(course, ex), reverse=True)
             }
             for built in as_completed(builds):
                 with contextlib.suppress(Exception):  # left to each submission to report
@@ -585,8 +586,8 @@ def grade_all(
             shared_path = scratch / "tests.pickle"
             shared.save(shared_path)
             futures = {
-                pool.submit(grade_submission, p, options, str(shared_path)): i
-                for i, p in enumerate(paths)
+                pool.submit(grade_submission, paths[i], options, str(shared_path)): i
+                for i in _largest_first(paths)
             }
             for done, future in enumerate(as_completed(futures), start=1):
                 i = futures[future]
@@ -601,6 +602,37 @@ def grade_all(
     finally:
         shutil.rmtree(scratch, ignore_errors=True)
     return [r for r in results if r is not None]
+
+
+def _largest_first(paths: Sequence[Path]) -> list[int]:
+    """The order in which the processes take the submissions: most code files first, then the
+    largest (more to grade), so that the batch does not end on one long submission graded while
+    the other processes have nothing left to do (longest-processing-time-first scheduling).
+    Results are still reported in the order given."""
+    return sorted(range(len(paths)), key=lambda i: (*(-n for n in _weight(paths[i])), i))
+
+
+def _weight(path: Path) -> tuple[int, int]:
+    """(code files, bytes) of a submission, read from a zip's directory or a folder's tree; an
+    unreadable one weighs nothing (it fails fast)."""
+    try:
+        if path.is_dir():
+            files = [p for p in path.rglob("*") if p.is_file() and not p.is_symlink()]
+            return sum(p.suffix == ".py" for p in files), sum(p.stat().st_size for p in files)
+        if zipfile.is_zipfile(path):
+            with zipfile.ZipFile(path) as archive:
+                infos = archive.infolist()
+            return sum(i.filename.endswith(".py") for i in infos), path.stat().st_size
+        return 0, path.stat().st_size
+    except (OSError, zipfile.BadZipFile):
+        return 0, 0
+
+
+def _build_cost(course: Any, exercise_id: str) -> tuple[int, int]:
+    """A test set's expected cost, to build the costly ones first: exercises whose limits were
+    raised (a whole data set), then those with more drawn inputs."""
+    options = course.exercise(exercise_id).options
+    return (1 if options.limits else 0, int(options.max_examples))
 
 
 def _is_code(course: Any, exercise_id: str) -> bool:

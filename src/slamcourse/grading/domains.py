@@ -28,9 +28,12 @@ points         a sequence of points (an N×2 array)         range, ordered, ties
 covariance     symmetric positive semidefinite matrix      size, range (of the diagonal)
 information    symmetric positive semidefinite matrix      size, range (of the diagonal)
 matrix         a general 2-D array                         size, range (of the entries)
+rotation       a 3×3 rotation matrix (orthonormal, det +1)
+pose3          a 3-D pose as a 4×4 homogeneous matrix      range (of the translation)
 indices        a sequence of whole-number indices          ordered, ties, empty
 edges          a sequence of tuples such as (i, j, d)      ordered, ties, empty
 g2o            the text of a g2o file
+edge3          the text of EDGE3 lines (a 3-D pose graph)
 text           other text
 choice         one of a few values (no boundaries)
 data           anything else (no boundaries)
@@ -79,9 +82,12 @@ TYPES: dict[str, str] = {
     "covariance": "a symmetric positive semidefinite matrix",
     "information": "a symmetric positive semidefinite matrix (an information matrix)",
     "matrix": "a general 2-D array",
+    "rotation": "a 3 x 3 rotation matrix (orthonormal to 1e-9, determinant +1)",
+    "pose3": "a 3-D pose: a 4 x 4 homogeneous matrix [[R, t], [0, 0, 0, 1]]",
     "indices": "a sequence of whole-number indices",
     "edges": "a sequence of tuples or lists such as (i, j, d) or (i, j, z, info)",
     "g2o": "the text of a g2o file",
+    "edge3": "the text of EDGE3 lines (a 3-D pose graph: i j x y z roll pitch yaw, 21 numbers)",
     "text": "other text",
     "choice": "one of a few values (no boundary inputs)",
     "data": "anything else (no boundary inputs)",
@@ -100,9 +106,12 @@ _PARAMETERS: dict[str, tuple[str, ...]] = {
     "covariance": ("size", "range"),
     "information": ("size", "range"),
     "matrix": ("size", "range"),
+    "rotation": (),
+    "pose3": ("range",),
     "indices": ("ordered", "ties", "empty"),
     "edges": ("ordered", "ties", "empty"),
     "g2o": (),
+    "edge3": (),
     "text": (),
     "choice": (),
     "data": (),
@@ -973,6 +982,251 @@ def _largest(t: ArgType) -> Change:
     return change
 
 
+# ---- rotations and 3-D poses
+
+ORTHONORMAL = 1e-9
+"""How far ``RᵀR`` of a ``rotation`` (and of a ``pose3``'s rotation block) may be from ``I``."""
+SMALL_TURNS = (1e-9, 1e-3)
+"""Angles of the ``small angle`` rotations (rad): ``cos θ`` rounds to 1 at the first."""
+UNDER_PI = (1e-7, 1e-12)
+"""How far below π the ``just under π`` rotations turn (the antisymmetric part ``~ π − θ``)."""
+
+
+def rotation_problem(rows: Any) -> str | None:
+    """Why ``rows`` is not a rotation matrix (3 × 3 numbers, ``RᵀR = I`` to
+    :data:`ORTHONORMAL`, determinant positive), or None. Pure Python: examples are checked
+    when an exercise loads."""
+    m = _square(rows, 3)
+    if m is None:
+        return "is not a 3 × 3 matrix of numbers"
+    if not all(math.isfinite(x) for row in m for x in row):
+        return "has entries that are not finite"
+    worst = max(
+        abs(sum(m[k][i] * m[k][j] for k in range(3)) - (1.0 if i == j else 0.0))
+        for i in range(3)
+        for j in range(3)
+    )
+    if worst > ORTHONORMAL:
+        return (
+            f"is not a rotation: RᵀR differs from I by {worst:.3g} (at most {ORTHONORMAL:g})"
+        )
+    if _det3(m) <= 0:
+        return "is a reflection (determinant −1), not a rotation"
+    return None
+
+
+def pose3_problem(rows: Any, t: ArgType | None = None) -> str | None:
+    """Why ``rows`` is not a 3-D pose (a 4 × 4 ``[[R, t], [0, 0, 0, 1]]``, ``R`` a rotation,
+    ``t`` inside ``t``'s range if declared), or None. Pure Python."""
+    m = _square(rows, 4)
+    if m is None:
+        return "is not a 4 × 4 matrix of numbers"
+    if m[3] != [0.0, 0.0, 0.0, 1.0]:
+        return "has a last row other than [0, 0, 0, 1]"
+    why = rotation_problem([row[:3] for row in m[:3]])
+    if why is not None:
+        return f"has a rotation block that {why}"
+    if t is not None and not all(t.contains(m[i][3]) for i in range(3)):
+        assert t.bounds is not None
+        low, high = t.bounds
+        return f"has a translation outside the declared range [{low:g}, {high:g}]"
+    return None
+
+
+def _square(v: Any, n: int) -> list[list[float]] | None:
+    """An n × n matrix (nested sequences or a 2-D array) as rows of floats, or None."""
+    rows = _rows(v, n)
+    if rows is None or len(rows) != n:
+        return None
+    return [[float(x) for x in row] for row in rows]
+
+
+def _det3(m: list[list[float]]) -> float:
+    return (
+        m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+        - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+        + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
+    )
+
+
+Turn = Callable[[list[list[float]]], "list[list[float]] | None"]  # a rotation's new rotation
+
+
+def _rotation(t: ArgType) -> list[_Transform]:
+    return _rotation_classes(t) + [
+        _one("whole numbers as int", t.name, _whole_turn(t, array=False)),
+        _one("int64 ndarray", t.name, _whole_turn(t, array=True)),
+        _one("list of lists", t.name, _turn_form(t, "list"), pure=True),
+        _one("ndarray", t.name, _turn_form(t, "ndarray"), pure=True),
+    ]
+
+
+def _pose3(t: ArgType) -> list[_Transform]:
+    out = _rotation(t)
+    if t.bounds is not None:
+        for upper in (True, False):
+            out.append(_one("translation at range ends", t.name, _translation_end(t, upper)))
+    return out
+
+
+def _rotation_classes(t: ArgType) -> list[_Transform]:
+    """The classes of a rotation (of a pose's rotation block, the translation kept)."""
+    n = t.name
+    out = [_one("identity", n, _turned(t, lambda _r: _IDENTITY))]
+    out += [_one("small angle", n, _turned(t, _about_own_axis(a))) for a in SMALL_TURNS]
+    out.append(_one("half turn", n, _turned(t, _half_turn)))
+    out += [_one("just under π", n, _turned(t, _about_own_axis(PI - d))) for d in UNDER_PI]
+    return out
+
+
+_IDENTITY = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
+
+
+def _split(v: Any, t: ArgType) -> tuple[list[list[float]], list[float] | None] | None:
+    """A rotation (or a pose's rotation block and translation) in the type's domain, or None."""
+    if t.type == "pose3":
+        m = _square(v, 4)
+        if m is None or pose3_problem(m, t) is not None:
+            return None
+        return [row[:3] for row in m[:3]], [row[3] for row in m[:3]]
+    m = _square(v, 3)
+    if m is None or rotation_problem(m) is not None:
+        return None
+    return m, None
+
+
+def _joined(r: list[list[Any]], translation: list[Any] | None) -> list[list[Any]]:
+    if translation is None:
+        return [list(row) for row in r]
+    zero, one = (0, 1) if all(type(x) is int for row in r for x in row) else (0.0, 1.0)
+    rows = [[*r[i], translation[i]] for i in range(3)]
+    return [*rows, [zero, zero, zero, one]]
+
+
+def _turned(t: ArgType, turn: Turn) -> Change:
+    """The rotation (block) replaced by ``turn`` of it, in the base's container (an array
+    stays a float array); None where the base is not in the domain or the result is not."""
+
+    def change(v: Any) -> Any:
+        parts = _split(v, t)
+        if parts is None:
+            return None
+        r = turn(parts[0])
+        if r is None or rotation_problem(r) is not None:  # the built-in domain check
+            return None
+        return _rows_out(_joined(r, parts[1]), v)
+
+    return change
+
+
+def _axis(r: list[list[float]]) -> list[float] | None:
+    """The unit axis of a rotation, turning the way it turns (at exactly π, its largest
+    component positive); None for the identity (no axis)."""
+    np = _np()
+    m = np.array(r, dtype="float64")
+    v = np.array([m[2, 1] - m[1, 2], m[0, 2] - m[2, 0], m[1, 0] - m[0, 1]])
+    size = float(np.linalg.norm(v))
+    if np.trace(m) > 1 or size > 1e-3:  # away from π, 2 sin θ n is accurate
+        return None if size == 0 else (v / size).tolist()
+    _, vectors = np.linalg.eigh((m + m.T) / 2)  # near π: the eigenvalue 1 of the symmetric part
+    axis = vectors[:, -1]
+    side = float(axis @ v)
+    if side < 0 or (side == 0 and axis[int(np.argmax(np.abs(axis)))] < 0):
+        axis = -axis
+    out: list[float] = (axis / np.linalg.norm(axis)).tolist()
+    return out
+
+
+def _exp(axis: list[float], angle: float) -> list[list[float]]:
+    """Rodrigues: the rotation by ``angle`` about the unit ``axis``."""
+    np = _np()
+    x, y, z = axis
+    k = np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
+    r = np.eye(3) + math.sin(angle) * k + (1 - math.cos(angle)) * (k @ k)
+    out: list[list[float]] = r.tolist()
+    return out
+
+
+def _about_own_axis(angle: float) -> Turn:
+    def turn(r: list[list[float]]) -> list[list[float]] | None:
+        axis = _axis(r)
+        return None if axis is None else _exp(axis, angle)
+
+    return turn
+
+
+def _half_turn(r: list[list[float]]) -> list[list[float]] | None:
+    """``2 n nᵀ − I`` about the rotation's own axis: exactly symmetric (``n_i n_j = n_j n_i``
+    in floating point), so no antisymmetric part tells ``π n`` from ``−π n``."""
+    axis = _axis(r)
+    if axis is None:
+        return None
+    return [[2 * axis[i] * axis[j] - (1.0 if i == j else 0.0) for j in range(3)] for i in range(3)]
+
+
+def _signed_permutations() -> list[list[list[int]]]:
+    """The 24 rotations whose entries are whole numbers (signed permutation matrices of
+    determinant +1), the identity first."""
+    import itertools
+
+    found = []
+    for perm in itertools.permutations(range(3)):
+        for signs in itertools.product((1, -1), repeat=3):
+            m = [[signs[i] if j == perm[i] else 0 for j in range(3)] for i in range(3)]
+            if _det3([[float(x) for x in row] for row in m]) > 0:
+                found.append(m)
+    return found
+
+
+def _whole_turn(t: ArgType, *, array: bool) -> Change:
+    """The rotation with whole-number entries nearest to the base's (the identity aside: it
+    is a class of its own), a pose's translation rounded into its range; Python ints in the
+    base's containers, or an int64 array."""
+
+    def change(v: Any) -> Any:
+        parts = _split(v, t)
+        if parts is None:
+            return None
+        r, translation = parts
+        turns = _signed_permutations()[1:]
+        best = max(turns, key=lambda p: sum(p[i][j] * r[i][j] for i in range(3) for j in range(3)))
+        moved = None
+        if translation is not None:
+            moved = [_round_to(x, t) for x in translation]
+            if any(x is None for x in moved):
+                return None
+        rows = _joined(best, moved)
+        if array:
+            return _np().array(rows, dtype="int64")
+        return _rows_like(rows, v)
+
+    return change
+
+
+def _turn_form(t: ArgType, form: str) -> Change:
+    def change(v: Any) -> Any:
+        parts = _split(v, t)
+        if parts is None:
+            return None
+        rows = _joined(*parts)
+        return rows if form == "list" else _np().array(rows, dtype="float64")
+
+    return change
+
+
+def _translation_end(t: ArgType, upper: bool) -> Change:
+    """A pose's translation set to the range's upper (or lower) end in every coordinate."""
+
+    def change(v: Any) -> Any:
+        parts = _split(v, t)
+        if parts is None or t.bounds is None:
+            return None
+        end = float(t.bounds[1] if upper else t.bounds[0])
+        return _rows_out(_joined(parts[0], [end, end, end]), v)
+
+    return change
+
+
 # ---- text
 
 
@@ -983,11 +1237,10 @@ def _text(t: ArgType) -> list[_Transform]:
         _one("no final newline", n, _no_final_newline, pure=True),
         _one("blank lines and trailing spaces", n, _padded, pure=True),
     ]
-    if t.type == "g2o":
-        out += [
-            _one("exponent notation", n, _exponents, pure=True),
-            _one("edge line first", n, _edge_first, pure=True),
-        ]
+    if t.type in ("g2o", "edge3"):
+        out.append(_one("exponent notation", n, _exponents, pure=True))
+    if t.type == "g2o":  # EDGE3 text has no vertices to put an edge before
+        out.append(_one("edge line first", n, _edge_first, pure=True))
     return out
 
 
@@ -1150,7 +1403,10 @@ _BUILDERS: dict[str, Callable[[ArgType], list[_Transform]]] = {
     "matrix": _matrix,
     "indices": _indices,
     "edges": _edges,
+    "rotation": _rotation,
+    "pose3": _pose3,
     "g2o": _text,
+    "edge3": _text,
     "text": _text,
 }
 
@@ -1525,7 +1781,12 @@ def types_from_arguments(arguments: Iterable[Any]) -> tuple[ArgType, ...]:
 
 def outside(t: ArgType, value: Any) -> str | None:
     """Why an example's ``value`` lies outside a scalar type's declared domain, or None (other
-    types are not checked here: their boundary transforms skip a value of another shape)."""
+    types are not checked here: their boundary transforms skip a value of another shape); a
+    ``rotation`` or a ``pose3`` is checked by its built-in domain check
+    (:func:`rotation_problem`, :func:`pose3_problem`)."""
+    if t.type in ("rotation", "pose3"):
+        why = rotation_problem(value) if t.type == "rotation" else pose3_problem(value, t)
+        return None if why is None else f"the matrix {why} (type {t.type})"
     if t.type not in _SCALARS:
         return None
     number = _number(value)

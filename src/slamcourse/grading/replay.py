@@ -157,6 +157,7 @@ def write_shipped(spec: ExerciseSpec, seed: int, inputs: list[dict[str, Any]]) -
     fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".rec-")
     with os.fdopen(fd, "w", encoding="utf-8") as handle:
         handle.write(text)
+    os.chmod(tmp, 0o644)  # a course file, committed and shipped like the YAML beside it
     os.replace(tmp, path)
     return path
 

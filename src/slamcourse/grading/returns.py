@@ -9,6 +9,7 @@ trusted parent, before any comparison.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -133,13 +134,34 @@ def to_plain(value: Any) -> Any:
     return value
 
 
+Judge = Callable[[Any, Any, dict[str, Any]], str | None]
+"""A code exercise's ``judge:`` (a reference.py function): ``judge(got, expected, kwargs)``
+decides whether the learner's value ``got`` (plain data, already of the declared form) is right
+for the input ``kwargs``, given the reference's value ``expected``; it returns ``None`` to
+accept, else why not (shown to the learner). A judge grades stochastic code by a statistical
+test, so it must be deterministic: the same value, the same verdict."""
+
+_ANY_VALUE = Tolerance(rtol=0.0, atol=math.inf)  # any finite number matches (the form only)
+
+
 def compare(
-    spec: tuple[str, ...] | str, got: Any, want: Any, tol: Tolerance, *, plain: bool = False
+    spec: tuple[str, ...] | str,
+    got: Any,
+    want: Any,
+    tol: Tolerance,
+    *,
+    plain: bool = False,
+    judge: Judge | None = None,
+    kwargs: dict[str, Any] | None = None,
 ) -> Mismatch | None:
     """``None`` when ``got`` (plain data from the learner) matches ``want`` (the reference);
-    ``plain``: ``want`` is plain data already (a test set's expected values are)."""
+    ``plain``: ``want`` is plain data already (a test set's expected values are). With a
+    ``judge``, ``got`` must only have ``spec``'s form (the reference's shape, finite numbers);
+    the judge, called with the input ``kwargs``, then decides instead of the tolerance."""
     if not plain:
         want = to_plain(want)
+    if judge is not None:
+        return _judged(spec, got, want, judge, kwargs or {})
     if isinstance(spec, tuple):
         if not isinstance(got, list):
             return Mismatch(f"expected {describe(spec)}, got {_what(got)}")
@@ -154,6 +176,47 @@ def compare(
         return _array(got, want, tol)
     problem = _scalar(spec, got, want, tol)
     return Mismatch(problem) if problem else None
+
+
+def _judged(
+    spec: tuple[str, ...] | str, got: Any, want: Any, judge: Judge, kwargs: dict[str, Any]
+) -> Mismatch | None:
+    import copy
+
+    from slamcourse.errors import GraderError
+
+    if spec == "array":
+        form = _array(got, want, _ANY_VALUE)
+    elif isinstance(spec, tuple):
+        if not isinstance(got, list) or len(got) != len(spec):
+            form = compare(spec, got, want, _ANY_VALUE)
+        else:
+            form = None
+            for i, (kind, g, w) in enumerate(zip(spec, got, want, strict=True)):
+                problem = _loose(kind, g, w)
+                if problem:
+                    form = Mismatch(f"value {i + 1} of the tuple: {problem}")
+                    break
+    else:
+        problem = _loose(spec, got, want)
+        form = Mismatch(problem) if problem else None
+    if form is not None:
+        return form
+    try:
+        verdict = judge(copy.deepcopy(got), want, copy.deepcopy(kwargs))
+    except Exception as exc:
+        raise GraderError(
+            f"the exercise's judge failed on a value of the declared form: "
+            f"{type(exc).__name__}: {exc}"
+        ) from exc
+    return None if verdict is None else Mismatch(str(verdict))
+
+
+def _loose(kind: str, got: Any, want: Any) -> str | None:
+    """Whether a scalar has ``kind``'s form, whatever its value."""
+    if kind == "boolean":
+        return None if isinstance(got, bool) else f"expected True or False, got {_what(got)}"
+    return _scalar("angle" if kind == "angle" else "number", got, want, _ANY_VALUE)
 
 
 def _what(value: Any) -> str:

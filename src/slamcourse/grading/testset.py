@@ -271,6 +271,7 @@ def run_cases(
     cases: Sequence[Case] | None = None,
     max_failures: int = MAX_RECORDED,
     stop_worker: bool = True,
+    judge: Any = None,
 ) -> tuple[Outcome, list[Case | None]]:
     """Call the learner's function on every case (``cases``: a subset) and compare.
 
@@ -282,7 +283,8 @@ def run_cases(
     (the validator needs only the first: whether a file passes); with ``stop_worker``, a
     worker is stopped mid-chunk once the last failure wanted arrives.
     An argument the function changed in place (unless its name is in ``mutable``) is a
-    failure of its own kind, ``mutated``.
+    failure of its own kind, ``mutated``. ``judge``: the exercise's judge
+    (:data:`~slamcourse.grading.returns.Judge`), which decides instead of the tolerance.
     """
     todo = list(tests.cases if cases is None else cases)
     outcome = Outcome(seed=tests.seed, replayed=tests.recorded)
@@ -306,7 +308,9 @@ def run_cases(
         ) -> bool:
             """Judged as the results stream in: the last failure wanted ends the chunk there
             (the worker is stopped rather than left computing inputs nobody will read)."""
-            judged[index] = _judge(chunk[index], result, signature, returns, tolerance, allowed)
+            judged[index] = _judge(
+                chunk[index], result, signature, returns, tolerance, allowed, judge
+            )
             seen[0] += judged[index] is not None
             return seen[0] >= max_failures
 
@@ -320,7 +324,7 @@ def run_cases(
             if index in judged:
                 failure = judged[index]
             else:
-                failure = _judge(case, result, signature, returns, tolerance, allowed)
+                failure = _judge(case, result, signature, returns, tolerance, allowed, judge)
             if result.output_cut:
                 outcome.output_cut = True
             if failure is None:
@@ -356,6 +360,7 @@ def _judge(
     returns: Any,
     tolerance: Tolerance,
     allowed: set[str],
+    judge: Any = None,
 ) -> Failure | None:
     kwargs, want = case.kwargs, case.expected
     if result.status in FATAL:
@@ -379,7 +384,9 @@ def _judge(
             result.stdout,
             origin=case.origin,
         )
-    mismatch = compare(returns, result.value, want, tolerance, plain=True)
+    mismatch = compare(
+        returns, result.value, want, tolerance, plain=True, judge=judge, kwargs=kwargs
+    )
     if mismatch is not None:
         return Failure(
             kwargs,

@@ -57,6 +57,8 @@ class CodeOptions:
     valid: str | None = None  # reference.py function: is a derived boundary input in the domain
     valid_line: int = 0
     mutates: tuple[str, ...] = ()  # parameters the prompt allows the function to change in place
+    judge: str | None = None  # reference.py function deciding instead of the tolerance
+    judge_line: int = 0
 
     def sandbox_limits(self) -> Any:
         """The worker's :class:`~slamcourse.sandbox.Limits`: the defaults with this exercise's
@@ -86,6 +88,7 @@ class CodeKind(Kind):
         "types": False,
         "valid": False,
         "mutates": False,
+        "judge": False,
     }
     misconception_key: ClassVar[str | None] = "function"
 
@@ -165,6 +168,13 @@ class CodeKind(Kind):
         tol = spec.tolerance if "tolerance" in raw else CODE_TOLERANCE
         limits = _parse_limits(raw, check)
         types = _parse_types(raw, signature, arguments, check)
+        judge = check.typed(raw, "judge", str)
+        if judge is not None and raw.get("misconceptions"):
+            check.add(
+                raw.line_of("judge"),
+                "a judged exercise names what is wrong in its judge's message: "
+                "drop its 'misconceptions' (a learner's random values never equal one's)",
+            )
         return CodeOptions(
             function,
             signature,
@@ -183,6 +193,8 @@ class CodeKind(Kind):
             valid=_parse_valid(raw, check),
             valid_line=raw.line_of("valid"),
             mutates=_parse_mutates(raw, signature, check),
+            judge=judge,
+            judge_line=raw.line_of("judge"),
         )
 
     # ------------------------------------------------------------------ grading
@@ -206,7 +218,8 @@ class CodeKind(Kind):
         sig = f"{opts.function}({', '.join(opts.signature)})"
         return (
             f"Write `{sig}`, then submit it for checking. {IMPORTS_RULE} "
-            f"{tolerance_rule(opts.returns, opts.tolerance)} {mutation_rule(opts)}"
+            f"{judge_rule(opts) or tolerance_rule(opts.returns, opts.tolerance)} "
+            f"{mutation_rule(opts)}"
         )
 
     def check(self, spec: ExerciseSpec, variant: Variant, answer: str) -> Verdict:
@@ -323,6 +336,7 @@ class CodeKind(Kind):
             mutable=opts.mutates,
             max_failures=MAX_RECORDED if max_failures is None else max_failures,
             stop_worker=call is None,  # a shrinking check still needs its worker
+            judge=reference.function(spec, opts.judge, opts.judge_line) if opts.judge else None,
         )
         outcome.output_cut = outcome.output_cut or output_cut
         if timing is not None:
@@ -344,6 +358,7 @@ class CodeKind(Kind):
         if (
             failure is not None
             and call is not None
+            and not opts.judge  # a judge's verdict on one input says nothing of smaller ones
             and not case.hidden
             and failure.kind in ("mismatch", "raised")
         ):
@@ -441,6 +456,11 @@ class CodeKind(Kind):
             )
         elif failure.kind == "mutated":
             text = f"`{call_text}`: {_sentence(engine_text(failure.message))}"
+        elif opts.judge:  # the reference's value is one right answer of many: not "expected"
+            got_text = show_pair(to_plain(failure.expected), failure.got)[1]
+            text = f"Wrong result for `{call_text}`: got `{got_text}`. " + _sentence(
+                engine_text(failure.message)
+            )
         else:
             want_text, got_text = show_pair(to_plain(failure.expected), failure.got)
             text = f"Wrong result for `{call_text}`: expected `{want_text}`, got `{got_text}`."
@@ -669,6 +689,17 @@ def tolerance_rule(returns: Any, tol: Tolerance) -> str:
         )
     text = "; ".join(parts)
     return f"Results: {text}." if text else ""
+
+
+def judge_rule(opts: CodeOptions) -> str:
+    """With a ``judge``: one sentence saying that a statistical test decides (the prompt states
+    the test and its probabilities); else an empty string."""
+    if not opts.judge:
+        return ""
+    return (
+        "Results: judged by the test the prompt states (any correct method passes with the "
+        "probability it states), not compared with one expected value."
+    )
 
 
 def mutation_rule(opts: CodeOptions) -> str:

@@ -41,6 +41,21 @@ def odometry_step_sigma(
     return distance_error * step, math.radians(heading_error_deg_per_m * step)
 
 
+def odometry_step_sigma_per_metre(
+    step: float, calibration: float, sigma_distance: float, sigma_heading: float
+) -> tuple[float, float]:
+    """``(σ_pos [m], σ_θ [rad])`` of one straight step of ``step`` metres, for odometry whose
+    errors are independent from one stretch of floor to the next, calibrated as the standard
+    deviations ``sigma_distance`` (m) and ``sigma_heading`` (rad) over ``calibration`` metres.
+
+    Such errors have a *variance per metre* (``σ²/calibration``): a step of ``s`` metres has
+    variance ``s σ²/calibration``, so its standard deviation scales with ``√(s/calibration)``,
+    and summing the steps' variances gives the same total for any cut of a drive into steps.
+    """
+    scale = math.sqrt(step / calibration)
+    return sigma_distance * scale, sigma_heading * scale
+
+
 def random_walk(sigma_step: float, steps: int) -> float:
     """Standard deviation after ``steps`` independent steps of ``sigma_step`` each: ``σ √k``."""
     return sigma_step * math.sqrt(steps)

@@ -1,0 +1,14 @@
+# method: the four block terms Ji Sii Ji^T + Ji Sij Jj^T + Jj Sji Ji^T + Jj Sjj Jj^T, each block cut out of P
+import math
+
+import numpy as np
+
+
+def relative_pose_covariance(xi, xj, P):
+    P = np.asarray(P, dtype=float)
+    ci, si = math.cos(xi[2]), math.sin(xi[2])
+    dx, dy = xj[0] - xi[0], xj[1] - xi[1]
+    Ji = np.array([[-ci, -si, -si * dx + ci * dy], [si, -ci, -ci * dx - si * dy], [0.0, 0.0, -1.0]])
+    Jj = np.array([[ci, si, 0.0], [-si, ci, 0.0], [0.0, 0.0, 1.0]])
+    Sii, Sij, Sji, Sjj = P[:3, :3], P[:3, 3:], P[3:, :3], P[3:, 3:]
+    return Ji @ Sii @ Ji.T + Ji @ Sij @ Jj.T + Jj @ Sji @ Ji.T + Jj @ Sjj @ Jj.T

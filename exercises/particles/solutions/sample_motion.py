@@ -1,0 +1,22 @@
+import math
+
+import numpy as np
+
+
+def sample_motion(pose, u, alphas, n, seed):
+    rng = np.random.default_rng(seed)
+    x, y, theta = pose
+    rot1, trans, rot2 = u
+    a1, a2, a3, a4 = alphas
+    s1 = math.sqrt(a1 * rot1**2 + a2 * trans**2)
+    s2 = math.sqrt(a3 * trans**2 + a4 * (rot1**2 + rot2**2))
+    s3 = math.sqrt(a1 * rot2**2 + a2 * trans**2)
+    r1 = rot1 + rng.normal(0.0, s1, n)
+    t = trans + rng.normal(0.0, s2, n)
+    r2 = rot2 + rng.normal(0.0, s3, n)
+    heading = theta + r1
+    out = np.empty((n, 3))
+    out[:, 0] = x + t * np.cos(heading)
+    out[:, 1] = y + t * np.sin(heading)
+    out[:, 2] = np.arctan2(np.sin(heading + r2), np.cos(heading + r2))
+    return out

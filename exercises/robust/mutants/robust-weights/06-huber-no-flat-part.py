@@ -1,0 +1,18 @@
+# mistake: Huber's weight written k / sqrt(s) for every s, without the flat part below the boundary
+import numpy as np
+
+
+def robust_weights(kind, s, k):
+    s = np.asarray(s, dtype=float).reshape(-1)
+    k2 = k * k
+    if kind == "l2":
+        return np.ones(len(s))
+    if kind == "huber":
+        with np.errstate(divide="ignore"):
+            return k / np.sqrt(s)
+    if kind == "cauchy":
+        return 1.0 / (1.0 + s / k2)
+    if kind == "dcs":
+        scale = np.minimum(1.0, 2.0 * k2 / (k2 + s))  # the scale of the error
+        return scale**2  # Omega is multiplied by its square
+    raise ValueError(kind)
