@@ -102,15 +102,15 @@ CANONICAL: dict[str, Any] = {
     "association/gate-decision": [_gate_choice()],
     "association/gate-tail": 100 * math.exp(-8.5 / 2),
     "association/nearest-neighbour-bug": 6,
-    "association/wrong-association": ["a", "b", "c", "d"],
-    "association/joint-compatibility": ["a"],
+    "association/wrong-association": ["a", "c", "d", "f"],
+    "association/joint-compatibility": ["b"],
     "association/joint-gate": _chi2_4_quantile(0.95),  # 2 pairings × 2 entries
     # chapter 4: drift
     "drift/systematic-drift": 0.1 * 100,
     "drift/random-drift": math.sqrt(400 * 0.05**2),
     "drift/square-loop": abs(sum(0.02 * 100 * 1j**side for side in range(4))),
     "drift/heading-drift-value": sum(0.5 * math.sin(0.01 * k) for k in range(1, 101)),
-    "drift/why-heading": ["a"],
+    "drift/why-heading": ["b"],
     "drift/loop-correction": ["c"],
     "drift/correction-share": 2.0 * 4 / 10,
     # chapter 5: graph
@@ -123,7 +123,7 @@ CANONICAL: dict[str, Any] = {
     "graph/chain-sparsity": 100 * _band_count(1000, 1) / 1000**2,
     "graph/loop-closure-blocks": _band_count(1000, 1) + 2 * 5,
     "graph/covariance-dense": _chain_covariance_nonzeros(5),
-    "graph/variable-ordering": ["a", "b", "c"],
+    "graph/variable-ordering": ["b", "d", "e"],
     "graph/loop-fill": _ring_factor_nonzeros(6),
 }
 

@@ -8,6 +8,7 @@
 
 from __future__ import annotations
 
+import functools
 import importlib.util
 import math
 import xml.etree.ElementTree as ET
@@ -19,8 +20,10 @@ import pytest
 
 from slamcourse.course.loader import load_course
 from slamcourse.course.locate import bundled_course_root
+from slamcourse.grading import testset
 from slamcourse.kinds import get_kind
 from slamcourse.plots import ch_loop_closure as plots
+from slamcourse.slam import loopclosure as lc
 from slamcourse.slam import posegraph as pg
 from slamcourse.slam import se2
 
@@ -128,6 +131,94 @@ def test_first_return_candidates_by_brute_force() -> None:
             chosen.append(i + snap.first)
     assert chosen == list(range(14, 35))
     assert plots.gate_candidates()[1] == chosen
+
+
+def test_first_return_search_mistakes_by_brute_force() -> None:
+    """The prose's costs of each mistake for pose 166 (95 %, gap 20): without Σ_ik 43 poses
+    (14–36 and 127–146), Euclidean 6 (14–19), the whole pose against χ²₃ 17 (14–30); computed
+    here from an H⁻¹ assembled in this file and finite-difference Jacobians."""
+    snap = ref.arrival(166)
+    cov = _dense_cov(snap.poses, list(snap.edges))
+    x = snap.poses
+    k = len(x) - 1
+    h = 1e-6
+
+    def jacobian(i: int) -> np.ndarray:
+        base = np.array([*x[i], *x[k]])
+        jac = np.zeros((3, 6))
+        for a in range(6):
+            up, down = base.copy(), base.copy()
+            up[a] += h
+            down[a] -= h
+            d = np.array(se2.between(up[:3], up[3:])) - np.array(se2.between(down[:3], down[3:]))
+            d[2] = se2.wrap_angle(d[2])
+            jac[:, a] = d / (2 * h)
+        return jac
+
+    gate2 = -2 * math.log(1 - 0.95)
+    gate3 = 7.814727903251179  # χ²₃ at 95 %, from printed tables
+    right, no_cross, euclid, whole = [], [], [], []
+    for i in range(k - 20 + 1):
+        jac = jacobian(i)
+        joint = _joint_of(cov, i, k)
+        independent = joint.copy()
+        independent[:3, 3:] = independent[3:, :3] = 0.0
+        r = np.array(se2.between(x[i], x[k]))
+        r[2] = se2.wrap_angle(r[2])
+        t = r[:2]
+        pose = i + snap.first
+        if t @ np.linalg.solve((jac @ joint @ jac.T)[:2, :2], t) <= gate2:
+            right.append(pose)
+        if t @ np.linalg.solve((jac @ independent @ jac.T)[:2, :2], t) <= gate2:
+            no_cross.append(pose)
+        if t @ t <= gate2:
+            euclid.append(pose)
+        if r @ np.linalg.solve(jac @ joint @ jac.T, r) <= gate3:
+            whole.append(pose)
+    assert right == list(range(14, 35))
+    assert no_cross == [*range(14, 37), *range(127, 147)] and len(no_cross) == 43
+    assert euclid == list(range(14, 20))
+    assert whole == list(range(14, 31)) and len(whole) == 17
+    # the reference's misconceptions say the same on the figure's search
+    m = [lc.block(snap.cov, i, i) for i in range(k + 1)]
+    c = [lc.block(snap.cov, i, k) for i in range(k + 1)]
+    kw = {"poses": x, "marginals": m, "cross": c, "gap": 20, "confidence": 0.95}
+    assert [i + snap.first for i in ref.loop_candidates(**kw)] == right
+    assert [i + snap.first for i in ref.mistake_cand_no_cross(**kw)] == no_cross
+    assert [i + snap.first for i in ref.mistake_cand_euclidean(**kw)] == euclid
+    assert [i + snap.first for i in ref.mistake_cand_full_pose(**kw)] == whole
+
+
+def test_candidate_search_inputs_are_intel_arrivals() -> None:
+    """The exercise's INTEL inputs: the last 200 poses (at most) of the graph held on each
+    arrival, ending at the arrival pose; the blocks those of that graph's H⁻¹; and for pose
+    166 the candidates of a brute force at the input's own gap and confidence."""
+    searches = ref.intel_searches()
+    assert len(searches) == len(ref.ARRIVALS) == 8
+    for j, search in zip(ref.ARRIVALS, searches, strict=True):
+        snap = ref.arrival(j)
+        n = len(search["poses"])
+        assert n == min(len(snap.poses), 200)
+        assert np.allclose(search["poses"][-1], snap.poses[-1], atol=1e-9)
+        assert np.allclose(search["cross"][-1], search["marginals"][-1])
+        assert ref.search_valid(**search)
+    first = searches[0]
+    snap = ref.arrival(166)
+    cov = _dense_cov(snap.poses, list(snap.edges))
+    x = snap.poses
+    k = len(x) - 1
+    gap, confidence = first["gap"], first["confidence"]
+    chosen = []
+    for i in range(k - gap + 1):
+        c, s = math.cos(x[i][2]), math.sin(x[i][2])
+        d = x[k][:2] - x[i][:2]
+        t = np.array([c * d[0] + s * d[1], -s * d[0] + c * d[1]])
+        jac = np.array([[-c, -s, t[1], c, s, 0.0], [s, -c, -t[0], -s, c, 0.0]])
+        if float(t @ np.linalg.solve(jac @ _joint_of(cov, i, k) @ jac.T, t)) <= -2 * math.log(
+            1 - confidence
+        ):
+            chosen.append(i)
+    assert ref.loop_candidates(**first) == chosen
 
 
 def test_nis_of_closures_on_arrival() -> None:
@@ -282,9 +373,18 @@ def test_enough_mutants_and_variants() -> None:
         assert all(p.read_text(encoding="utf-8").startswith("# method: ") for p in variants)
 
 
+@functools.cache
+def _tests(exercise: str) -> object:
+    """The exercise's test set, built once for all its files (as the validator does)."""
+    return testset.build(COURSE.exercise(exercise))
+
+
 def _grade(exercise: str, path: Path) -> object:
     spec = COURSE.exercise(exercise)
-    return get_kind("code").check_source(spec, path.read_text(encoding="utf-8"), path.name)
+    source = path.read_text(encoding="utf-8")
+    return get_kind("code").check_source(
+        spec, source, path.name, tests=_tests(exercise), shrink=False, max_failures=1
+    )
 
 
 @pytest.mark.parametrize(("exercise", "path"), _cases("mutants"))

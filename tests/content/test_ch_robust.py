@@ -4,7 +4,8 @@
    from homogeneous SE(2) matrices, Jacobians by central differences, its own sparse assembly
    and its own Levenberg-Marquardt), and compared with the reference code;
 2. the figures and pictures draw (SVG with a title and a description);
-3. the whole-graph and INTEL-window inputs are in robust/robust-optimise's test set;
+3. the whole-graph and INTEL-window inputs are in robust/robust-optimise's and
+   robust/levenberg-marquardt's test sets;
 4. every mutant is rejected and every variant accepted, graded through the real sandbox.
 """
 
@@ -317,6 +318,95 @@ def test_intel_counts_quoted() -> None:
     assert len(graph.edges) + 1 == 1484
 
 
+def _lm_trace(
+    x: np.ndarray, edges: tuple[Any, ...], lam: float, trials: int
+) -> dict[str, list[float]]:
+    """Levenberg-Marquardt by this file's own code (numeric Jacobians): χ² after every trial,
+    λ and ϱ of every trial."""
+    i, j, z, om = edges
+    ones = np.ones(len(i))
+    chi = float(_chi2s(x, i, j, z, om).sum())
+    out: dict[str, list[float]] = {"chi2": [chi], "lam": [], "rho": []}
+    nu = 2.0
+    for _ in range(trials):
+        h, g = _system(x, i, j, z, om, ones)
+        d = spsolve((h + diags(lam * h.diagonal())).tocsc(), -g)
+        y = x.copy()
+        y[1:] += d.reshape(-1, 3)
+        new = float(_chi2s(y, i, j, z, om).sum())
+        rho = (chi - new) / -(2 * g @ d + d @ (h @ d))
+        out["lam"].append(lam)
+        out["rho"].append(float(rho))
+        if rho > 0:
+            x, chi = y, new
+            lam *= max(1 / 3, 1 - (2 * rho - 1) ** 3)
+            nu = 2.0
+        else:
+            lam *= nu
+            nu *= 2
+        out["chi2"].append(chi)
+    return out
+
+
+@lru_cache(maxsize=1)
+def _window() -> tuple[np.ndarray, tuple[Any, ...]]:
+    """INTEL poses 100-259 and the edges among them, read from the file here."""
+    x, i, j, z, om = _read(INTEL)
+    keep = (i >= 100) & (i < 260) & (j >= 100) & (j < 260)
+    return x[100:260].copy(), (i[keep] - 100, j[keep] - 100, z[keep], om[keep])
+
+
+def test_the_levenberg_marquardt_window_figures() -> None:
+    from slamcourse.plots import ch_robust
+
+    x, edges = _window()
+    assert int(np.sum(np.abs(edges[0] - edges[1]) != 1)) == 10
+    gn, lm = ch_robust.window_traces()
+    own_gn = _irls_arrays(x, edges, 3)
+    assert own_gn[0] == pytest.approx(gn[0], rel=1e-9) and round(own_gn[0]) == 2887
+    assert own_gn[2] == pytest.approx(gn[2], rel=1e-3) and own_gn[2] - own_gn[3] < 0.01
+    assert round(own_gn[3], 2) == 9.99
+    slow = _lm_trace(x, edges, 1e-3, 20)
+    assert [round(r, 1) for r in slow["rho"][:4]] == [-12.3, -16.3, -16.4, -3.1]
+    assert slow["lam"][:5] == pytest.approx([0.001, 0.002, 0.008, 0.064, 1.024])
+    assert round(slow["rho"][4], 2) == 0.98 and round(slow["chi2"][20]) == 47
+    tiny = _lm_trace(x, edges, 1e-6, 20)
+    assert tiny["rho"][0] > 0 and round(tiny["rho"][0], 2) == 0.53
+    assert round(tiny["chi2"][20], 1) == 10.3
+    huge = _lm_trace(x, edges, 1e3, 20)
+    assert all(r > 0 for r in huge["rho"]) and round(huge["chi2"][20]) == 137
+    assert huge["lam"][:3] == pytest.approx([1000, 1000 / 3, 1000 / 9], rel=1e-3)
+    for lam0, own in ((1e-3, slow), (1e-6, tiny), (1e3, huge)):
+        assert lm[lam0][0] == pytest.approx(own["chi2"], rel=1e-4)
+    _in_prose("gain ratios of $-12.3$, $-16.3$, $-16.4$ and $-3.1$")
+    _in_prose("from 0.001 to 1.024; the fifth trial is accepted with $\\varrho = 0.98$")
+    _in_prose("$\\chi^2$ falls from 2887 to 47 after 20 trials")
+    _in_prose(
+        "with $\\varrho = 0.53$, so $\\lambda$ barely moves; after 20 trials $\\chi^2$ is 10.3"
+    )
+    _in_prose("$\\chi^2$ is at 137 after 20 trials")
+    _in_prose("within 0.01 of its optimum, 9.99, after two steps")
+    _in_prose("their 10 loop closures")
+
+
+def _irls_arrays(x: np.ndarray, edges: tuple[Any, ...], steps: int) -> list[float]:
+    """χ² before and after each undamped Gauss-Newton step (this file's own code)."""
+    i, j, z, om = edges
+    history = [float(_chi2s(x, i, j, z, om).sum())]
+    for _ in range(steps):
+        x = _step(x, *_system(x, i, j, z, om, np.ones(len(i))))
+        history.append(float(_chi2s(x, i, j, z, om).sum()))
+    return history
+
+
+def test_the_damping_threshold_is_stated_where_the_rule_changes() -> None:
+    """1 − (2ϱ − 1)³ > 1/3 exactly below ϱ = (1 + (2/3)^(1/3))/2 ≈ 0.94 (the prose's figure)."""
+    edge = (1 + (2 / 3) ** (1 / 3)) / 2
+    assert 1 - (2 * (edge - 1e-9) - 1) ** 3 > 1 / 3 > 1 - (2 * (edge + 1e-9) - 1) ** 3
+    assert round(edge, 2) == 0.94
+    _in_prose("whenever $\\varrho$ is below about 0.94")
+
+
 # --- 2. figures and pictures --------------------------------------------------------------
 
 
@@ -331,12 +421,16 @@ def test_figures_and_pictures_draw() -> None:
     from slamcourse.plots import registry
 
     placed = re.findall(r"```\{figure\} (\S+)", CHAPTER)
-    assert placed == ["robust/damping", "robust/kernels", "robust/fold"]
+    assert placed == ["robust/lm-window", "robust/damping", "robust/kernels", "robust/fold"]
     for figure in placed:
         svg = registry.figure_svg(figure)
         assert svg is not None
         _svg_ok(svg)
-    for exercise in ("robust/robust-weights", "robust/robust-optimise"):
+    for exercise in (
+        "robust/robust-weights",
+        "robust/robust-optimise",
+        "robust/levenberg-marquardt",
+    ):
         svg = registry.plot_for(exercise, [], {}, solved=False)
         assert svg is not None
         _svg_ok(svg)
@@ -354,10 +448,20 @@ def test_the_test_set_holds_the_windows_and_the_whole_graph() -> None:
     assert all(ex["text"].count("VERTEX_SE2") <= 8 for ex in spec.options.examples)
 
 
+def test_the_lm_test_set_holds_every_intel_window() -> None:
+    cases = _tests("robust/levenberg-marquardt").cases
+    held = {(len(c.kwargs["poses"]), tuple(np.asarray(c.kwargs["poses"], float)[0])) for c in cases}
+    for first, count, _, _ in ref.LM_WINDOWS:
+        poses, _ = ref.intel_window(first, count)
+        assert (count, tuple(poses[0])) in held, (first, count)
+    spec = COURSE.exercise("robust/levenberg-marquardt")
+    assert all(len(ex["poses"]) <= 6 for ex in spec.options.examples)
+
+
 # --- 4. mutants fail, variants pass -----------------------------------------------------------
 
 
-@lru_cache(maxsize=2)
+@lru_cache(maxsize=3)
 def _tests(exercise: str) -> Any:
     from slamcourse.grading import testset
 
@@ -378,15 +482,17 @@ def _grade(exercise: str, path: Path) -> Any:
 
 def _files(group: str) -> list[Any]:
     cases = []
-    for slug in ("robust-weights", "robust-optimise"):
+    for slug in ("robust-weights", "robust-optimise", "levenberg-marquardt"):
         marks = [pytest.mark.slow] if slug == "robust-optimise" and group == "variants" else []
         for path in sorted((FOLDER / group / slug).glob("*.py")):
-            cases.append(pytest.param(f"robust/{slug}", path, id=path.stem, marks=marks))
+            cases.append(
+                pytest.param(f"robust/{slug}", path, id=f"{slug}/{path.stem}", marks=marks)
+            )
     return cases
 
 
 def test_enough_mutants_and_variants() -> None:
-    for slug in ("robust-weights", "robust-optimise"):
+    for slug in ("robust-weights", "robust-optimise", "levenberg-marquardt"):
         mutants = sorted((FOLDER / "mutants" / slug).glob("*.py"))
         variants = sorted((FOLDER / "variants" / slug).glob("*.py"))
         assert len(mutants) >= 8 and len(variants) >= 3

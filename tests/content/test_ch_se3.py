@@ -3,6 +3,8 @@ computations, its drawings, and its graders (every mutant rejected, every varian
 
 from __future__ import annotations
 
+import dataclasses
+import functools
 import importlib.util
 import math
 import re
@@ -16,9 +18,11 @@ from scipy.spatial.transform import Rotation  # type: ignore[import-untyped]
 
 from slamcourse.course.loader import load_course
 from slamcourse.course.locate import bundled_course_root
+from slamcourse.grading import testset
 from slamcourse.kinds import get_kind
 from slamcourse.plots import ch_se3
 from slamcourse.slam import se3
+from tests.callees import in_process, load
 
 ROOT = Path(__file__).resolve().parents[2]
 CHAPTER = ROOT / "chapters" / "22-se3.md"
@@ -160,3 +164,57 @@ def test_mutant_is_rejected(exercise: str, path: Path) -> None:
 def test_variant_is_accepted(exercise: str, path: Path) -> None:
     verdict = _grade(exercise, path)
     assert verdict.passed, verdict.feedback  # type: ignore[attr-defined]
+
+
+# --- the argument types' classes catch their mistakes (examples removed) -------------------------
+
+# (exercise, mutant, boundary class, only that class catches it among the examples-free inputs)
+TYPE_CLASSES = [
+    ("se3/so3-log", "12-no-zero-branch.py", "identity (R)", True),
+    ("se3/so3-log", "11-output-like-input.py", "whole numbers as int (R)", True),
+    ("se3/so3-log", "11-output-like-input.py", "int64 ndarray (R)", True),
+    ("se3/so3-log", "13-antisymmetric-in-place.py", "ndarray (R)", True),
+    ("se3/so3-log", "01-acos.py", "just under π (R)", False),
+    ("se3/so3-log", "10-tiny-is-identity.py", "small angle (R)", False),
+    ("se3/so3-log", "06-first-component-positive.py", "half turn (R)", False),
+    ("se3/optimise-3d", "12-regex-without-exponent.py", "exponent notation (text)", False),
+]
+
+
+@functools.cache
+def _without_examples(exercise: str) -> testset.TestSet:
+    spec = COURSE.exercise(exercise)
+    bare = dataclasses.replace(spec, options=dataclasses.replace(spec.options, examples=()))
+    return testset.build(bare)
+
+
+@pytest.mark.parametrize(("exercise", "mutant", "label", "only"), TYPE_CLASSES)
+def test_a_type_class_rejects_its_mutant_without_the_examples(
+    exercise: str, mutant: str, label: str, only: bool
+) -> None:
+    """The generic mechanism, not an example: the exercise's test set without its examples
+    reaches the class, and the mutant fails on the class's inputs (and, where ``only``, passes
+    every other input: nothing else would have caught it)."""
+    opts = COURSE.exercise(exercise).options
+    tests = _without_examples(exercise)
+    assert label in tests.boundary_classes
+    path = ROOT / "exercises" / "se3" / "mutants" / exercise.split("/")[1] / mutant
+    call_many = in_process(load(path, opts.function))
+    failed = set()
+    for case in tests.cases:
+        if not only and case.origin != f"boundary: {label}":
+            continue
+        outcome, _ = testset.run_cases(
+            tests,
+            call_many,
+            signature=opts.signature,
+            returns=opts.returns,
+            tolerance=opts.tolerance,
+            mutable=opts.mutates,
+            cases=[case],
+        )
+        if not outcome.passed:
+            failed.add(case.origin)
+    assert f"boundary: {label}" in failed, f"{mutant} passes {label!r}"
+    if only:  # no drawn input catches it: without the class, the mistake would pass
+        assert all(o.startswith("boundary: ") for o in failed), failed

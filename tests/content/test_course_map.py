@@ -53,3 +53,20 @@ def test_related_lessons_each_say_what_they_add() -> None:
         "Bayesian Estimation — From Absolute Zero",
     ]
     assert all(len(row[1].split()) >= 6 for row in lessons)
+
+
+def test_the_map_figure_draws_the_table() -> None:
+    """The figure is drawn from the table itself: one box per chapter, one line per
+    "builds on" entry (a range such as 1–8 counts each chapter in it)."""
+    import xml.etree.ElementTree as ET
+
+    from slamcourse.plots.ch_where_next import _numbers, course_map, map_rows
+
+    assert _numbers("1–8") == tuple(range(1, 9)) and _numbers(
+        "7 (and 17, which it introduces)"
+    ) == (7,)
+    rows = map_rows(MAP)
+    svg = ET.fromstring(course_map(rows))
+    ns = "{http://www.w3.org/2000/svg}"
+    assert len(list(svg.iter(f"{ns}rect"))) == len(rows)
+    assert len(list(svg.iter(f"{ns}line"))) == sum(len(r.needs) for r in rows)

@@ -14,6 +14,7 @@ import urllib.error
 import urllib.request
 from collections.abc import Iterator
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -186,34 +187,25 @@ def test_a_course_page_and_a_check_through_jupyter_server_proxy(jupyter: str) ->
 
 
 @pytest.mark.browser
-def test_the_page_works_in_a_browser_through_the_proxy(jupyter: str) -> None:
+def test_the_page_works_in_a_browser_through_the_proxy(jupyter: str, browser: Any) -> None:
     """The page's own script (math, answers, the sidebar) under the proxy's prefix, in
     chromium: an answer checked through the proxy reaches the engine."""
-    from tests.web.conftest import CHROMIUM, CHROMIUM_ARGS
-
-    playwright = pytest.importorskip("playwright.sync_api")
-    if not Path(CHROMIUM).exists():
-        if os.environ.get("CI"):
-            pytest.fail(f"no chromium at {CHROMIUM}")
-        pytest.skip(f"no chromium at {CHROMIUM}")
-    with playwright.sync_playwright() as p:
-        browser = p.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_ARGS)
-        try:
-            page = browser.new_page()
-            page.set_default_timeout(30_000)
-            errors: list[str] = []
-            page.on("pageerror", lambda exc: errors.append(str(exc)))
-            # Jupyter's own login (its token), then the proxied course page
-            page.goto(f"{jupyter}/api/status?token={JUPYTER_TOKEN}")
-            page.goto(f"{jupyter}/slamcourse/chapter/basics")
-            page.wait_for_selector("html[data-ready='1']")
-            assert page.locator(".katex").count() > 0  # static files under the prefix
-            section = page.locator('[data-exercise="basics/count"]')
-            section.locator("[data-input]").fill("1")
-            section.locator("[data-check]").click()
-            feedback = section.locator("[data-feedback]")
-            feedback.filter(has_text="Not quite").wait_for()
-            assert "1 attempt" in section.locator("[data-attempts]").inner_text()
-            assert not errors, errors
-        finally:
-            browser.close()
+    page = browser.new_page()
+    try:
+        page.set_default_timeout(30_000)
+        errors: list[str] = []
+        page.on("pageerror", lambda exc: errors.append(str(exc)))
+        # Jupyter's own login (its token), then the proxied course page
+        page.goto(f"{jupyter}/api/status?token={JUPYTER_TOKEN}")
+        page.goto(f"{jupyter}/slamcourse/chapter/basics")
+        page.wait_for_selector("html[data-ready='1']")
+        assert page.locator(".katex").count() > 0  # static files under the prefix
+        section = page.locator('[data-exercise="basics/count"]')
+        section.locator("[data-input]").fill("1")
+        section.locator("[data-check]").click()
+        feedback = section.locator("[data-feedback]")
+        feedback.filter(has_text="Not quite").wait_for()
+        assert "1 attempt" in section.locator("[data-attempts]").inner_text()
+        assert not errors, errors
+    finally:
+        page.close()

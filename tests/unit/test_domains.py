@@ -46,6 +46,20 @@ G2O = (
     "EDGE_SE2 1 0 -0.5 0.25 3.0 4 0.5 -0.25 9 0.75 100\n"
 )
 
+EDGE3 = (
+    "EDGE3 0 1 1.08756 0.258927 0.247199 -0.537378 -0.131531 -0.265704 19.564 -1.583 -4.631 "
+    "1.516 5.014 -0.7 32.459 -1.456 2.341 9.642 8.743 12.867 0.226 2.206 -0.659 38.736 5.323 "
+    "9.934 40.523 -8.54 91.04\n"
+    "EDGE3 1 2 0.606173 0.0650451 0.0357494 -0.311014 -0.232185 -0.0832918 16.122 -2.262 0.377 "
+    "-0.554 4.169 -4.445 22.312 -6.314 2.935 -6.479 3.453 16.987 3.479 -4.417 -1.587 37.158 "
+    "-5.759 8.653 154.698 28.747 74.611\n"
+)
+ROTATION = [  # 2.5 rad about (1, 2, 3)
+    [-0.672490500150724, -0.22253899465722543, 0.7058561631550584],
+    [0.7371514562420636, -0.2865311539620954, 0.6119702838940424],
+    [0.06606252922219896, 0.9318671008604722, 0.3567344230189523],
+]
+
 
 def parse(text: str, signature: list[str]) -> tuple[tuple[ArgType, ...], Checker]:
     """``types:`` of a YAML text (the key on line 1), as the code kind parses it."""
@@ -221,6 +235,10 @@ def test_loading_the_module_imports_no_numpy() -> None:
         "domains.parse_types({'a': 'angle', 'n': {'type': 'count', 'range': [1, 3]}}, "
         "['a', 'n'], Checker('x'))\n"
         "domains.boundary_classes([domains.ArgType('a', 'angle', (-3.0, 3.0))])\n"
+        "domains.boundary_classes([domains.ArgType('R', 'rotation'), "
+        "domains.ArgType('T', 'pose3', (-1.0, 1.0))])\n"
+        "assert domains.outside(domains.ArgType('R', 'rotation'), "
+        "[[0, -1, 0], [1, 0, 0], [0, 0, 1]]) is None\n"
         "assert 'numpy' not in sys.modules and 'hypothesis' not in sys.modules\n"
     )
     done = subprocess.run(
@@ -256,6 +274,9 @@ RICH = (
     ArgType("idx", "indices", ordered=False, ties=True, empty=True),
     ArgType("edges", "edges", ordered=False, ties=True, empty=True),
     ArgType("text", "g2o"),
+    ArgType("rot", "rotation"),
+    ArgType("T", "pose3", (-20.0, 20.0)),
+    ArgType("e3", "edge3"),
     ArgType("doc", "text"),
     ArgType("c", "choice"),
     ArgType("d", "data"),
@@ -275,6 +296,9 @@ RICH_BASE: dict[str, Any] = {
     "idx": [2, 0, 1],
     "edges": [(0, 1, [1.0, 0.1, 0.2]), (1, 2, [0.9, 0.3, 0.4])],
     "text": G2O,
+    "rot": ROTATION,
+    "T": [[*ROTATION[0], 1.5], [*ROTATION[1], -2.25], [*ROTATION[2], 3.0], [0, 0, 0, 1]],
+    "e3": EDGE3,
     "doc": "first line\nsecond line\n",
     "c": "a",
     "d": {"anything": 1},
@@ -320,10 +344,23 @@ def test_every_class_is_derived_and_labelled_as_declared() -> None:
         "exponent notation (text)",
         "edge line first (text)",
         "probability ½ (p)",
+        "identity (rot)",
+        "small angle (rot)",
+        "half turn (rot)",
+        "just under π (rot)",
+        "whole numbers as int (rot)",
+        "int64 ndarray (rot)",
+        "list of lists (rot)",
+        "ndarray (rot)",
+        "half turn (T)",
+        "translation at range ends (T)",
+        "exponent notation (e3)",
+        "CRLF line ends (e3)",
     }
     assert expected <= boundary_classes(RICH)
     assert not any("(c)" in label or "(d)" in label for label in boundary_classes(RICH))
     assert "exponent notation (doc)" not in boundary_classes(RICH)
+    assert "edge line first (e3)" not in boundary_classes(RICH)  # EDGE3 text has no vertices
 
 
 def test_only_the_transformed_argument_changes() -> None:
@@ -371,14 +408,15 @@ def g2o_lines(text: str) -> list[tuple[str, list[float]]]:
 
 def test_representation_classes_keep_every_value() -> None:
     pure = representation_classes(RICH)
-    assert {"tuple (pose)", "ndarray (poses)", "CRLF line ends (text)"} <= pure
+    assert {"tuple (pose)", "ndarray (poses)", "CRLF line ends (text)", "ndarray (T)"} <= pure
+    assert "exponent notation (e3)" in pure and "half turn (rot)" not in pure
     assert "whole numbers as int (pose)" not in pure and "angle ±π (th)" not in pure
     for d in boundary_inputs(RICH, [RICH_BASE]):
         if d.label not in pure:
             continue
         name = d.label.rsplit("(", 1)[1].rstrip(")")
         got, base = d.kwargs[name], RICH_BASE[name]
-        if name == "text":
+        if name in ("text", "e3"):
             edges = [r for r in g2o_lines(got) if r[0].startswith("EDGE")]
             assert edges == [r for r in g2o_lines(base) if r[0].startswith("EDGE")]
             assert sorted(map(str, g2o_lines(got))) == sorted(map(str, g2o_lines(base)))
@@ -609,3 +647,168 @@ def test_deriving_is_fast() -> None:
     for _ in range(10):
         boundary_inputs(spec.options.types, bases)
     assert (time.perf_counter() - start) / 10 < 0.05
+
+
+# ------------------------------------------------------------------------------ rotations
+
+
+def test_rotation_pose3_and_edge3_parse() -> None:
+    text = "types:\n  R: rotation\n  T: {type: pose3, range: [-50, 50]}\n  t: edge3\n"
+    types, check = parse(text, ["R", "T", "t"])
+    assert check.problems == []
+    assert [(t.type, t.bounds) for t in types] == [
+        ("rotation", None),
+        ("pose3", (-50.0, 50.0)),
+        ("edge3", None),
+    ]
+    _types, check = parse("types:\n  R: {type: rotation, size: 3}\n", ["R"])
+    assert any("it takes no parameters" in m for m in messages(check)), messages(check)
+
+
+def _angle_axis(m: Any) -> tuple[float, np.ndarray]:
+    """Angle and unit axis by scipy (an independent route), the axis's sign free."""
+    from scipy.spatial.transform import Rotation  # type: ignore[import-untyped]
+
+    w = Rotation.from_matrix(np.asarray(m, dtype=float)).as_rotvec()
+    angle = float(np.linalg.norm(w))
+    return angle, (w / angle if angle > 0 else w)
+
+
+def _rotation_of(axis: tuple[float, float, float], angle: float) -> list[list[float]]:
+    from scipy.spatial.transform import Rotation
+
+    n = np.array(axis) / np.linalg.norm(axis)
+    out: list[list[float]] = Rotation.from_rotvec(angle * n).as_matrix().tolist()
+    return out
+
+
+ROTATION_TYPE = ArgType("R", "rotation")
+
+
+@settings(max_examples=60, database=None, deadline=None)
+@given(
+    axis=st.tuples(
+        st.floats(-1, 1, allow_nan=False),
+        st.floats(-1, 1, allow_nan=False),
+        st.floats(-1, 1, allow_nan=False),
+    ).filter(lambda v: math.hypot(*v) > 0.1),
+    angle=st.one_of(st.floats(1e-6, PI), st.floats(PI - 1e-3, PI)),
+    array=st.booleans(),
+)
+def test_every_rotation_class_is_a_rotation_with_its_promised_angle(
+    axis: tuple[float, float, float], angle: float, array: bool
+) -> None:
+    base = _rotation_of(axis, angle)
+    given_r: Any = np.array(base) if array else base
+    _, base_axis = _angle_axis(base)
+    derived = boundary_inputs([ROTATION_TYPE], [{"R": given_r}])
+    assert labels(derived) == boundary_classes([ROTATION_TYPE])
+    for d in derived:
+        r = d.kwargs["R"]
+        m = np.asarray(r, dtype=float)
+        assert domains.rotation_problem(r) is None, d.label
+        assert np.abs(m.T @ m - np.eye(3)).max() <= 1e-12 and np.linalg.det(m) > 0
+        _, got_axis = _angle_axis(m)
+        own_axis = abs(float(got_axis @ base_axis)) > 1 - 1e-6
+        sin = float(np.linalg.norm([m[2, 1] - m[1, 2], m[0, 2] - m[2, 0], m[1, 0] - m[0, 1]])) / 2
+        if d.label == "identity (R)":
+            assert np.array_equal(m, np.eye(3)) and type(r) is type(given_r)
+        elif d.label == "small angle (R)":
+            assert own_axis
+            assert any(math.isclose(sin, a, rel_tol=1e-6) for a in domains.SMALL_TURNS)
+        elif d.label == "half turn (R)":
+            assert own_axis and np.array_equal(m, m.T) and abs(np.trace(m) + 1) < 1e-12
+        elif d.label == "just under π (R)":
+            # sin θ = sin(π − θ): the antisymmetric part measures how far below π it turns
+            assert own_axis and any(math.isclose(sin, u, rel_tol=1e-3) for u in domains.UNDER_PI)
+        elif d.label in ("whole numbers as int (R)", "int64 ndarray (R)"):
+            if d.label.startswith("int64"):
+                assert r.dtype == np.int64
+            else:
+                assert all(type(x) is int for row in r for x in row)
+            assert sorted(np.abs(m).ravel().tolist()) == [0] * 6 + [1] * 3
+            assert not np.array_equal(m, np.eye(3))
+            scores = [float(np.sum(np.array(p) * base)) for p in domains._signed_permutations()]
+            assert float(np.sum(m * base)) >= max(scores[1:]) - 1e-12  # the nearest (or a tie)
+        else:  # the container forms: the same numbers
+            assert np.array_equal(m, np.asarray(base)), d.label
+            assert isinstance(r, np.ndarray) == (d.label == "ndarray (R)")
+
+
+def test_the_whole_number_rotations_are_the_24_turns_of_a_cube() -> None:
+    turns = domains._signed_permutations()
+    assert len(turns) == 24 and turns[0] == [[1, 0, 0], [0, 1, 0], [0, 0, 1]]
+    assert len({str(t) for t in turns}) == 24
+    assert all(round(np.linalg.det(np.array(t))) == 1 for t in turns)
+
+
+def test_a_base_that_is_not_a_rotation_gets_no_rotation_classes() -> None:
+    reflection = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, -1.0]]
+    sheared = [[1.0, 0.1, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
+    for bad in (reflection, sheared, [[1.0, 0.0], [0.0, 1.0]], "R"):
+        assert boundary_inputs([ROTATION_TYPE], [{"R": bad}]) == []
+    identity = boundary_inputs([ROTATION_TYPE], [{"R": np.eye(3)}])
+    assert "half turn (R)" not in labels(identity)  # the identity has no axis to turn about
+    assert "whole numbers as int (R)" in labels(identity)
+
+
+def test_the_domain_check_reports_examples_that_are_not_rotations() -> None:
+    t = ROTATION_TYPE
+    assert domains.outside(t, ROTATION) is None
+    assert domains.outside(t, np.array([[0, -1, 0], [1, 0, 0], [0, 0, 1]])) is None
+    flipped = domains.outside(t, [[1, 0, 0], [0, 1, 0], [0, 0, -1]])
+    assert flipped == "the matrix is a reflection (determinant −1), not a rotation (type rotation)"
+    rounded = [[round(x, 6) for x in row] for row in ROTATION]  # orthonormal to only ~1e-6
+    assert "RᵀR differs from I by" in str(domains.outside(t, rounded))
+    assert "not a 3 × 3 matrix" in str(domains.outside(t, [[1, 0], [0, 1]]))
+    assert "not finite" in str(domains.outside(t, [[math.nan, 0, 0], [0, 1, 0], [0, 0, 1]]))
+    pose = ArgType("T", "pose3", (-2.0, 2.0))
+    good = [[*ROTATION[0], 1.5], [*ROTATION[1], -2.0], [*ROTATION[2], 0.0], [0, 0, 0, 1]]
+    assert domains.outside(pose, good) is None
+    assert "last row" in str(domains.outside(pose, [*good[:3], [0, 0, 0, 2]]))
+    assert "outside the declared range [-2, 2]" in str(
+        domains.outside(pose, [*good[:2], [*ROTATION[2], 2.5], good[3]])
+    )
+    assert "rotation block" in str(
+        domains.outside(pose, [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, -1, 0], [0, 0, 0, 1]])
+    )
+
+
+def test_pose3_classes_turn_the_rotation_block_and_move_the_translation() -> None:
+    t = ArgType("T", "pose3", (-20.0, 20.0))
+    base = RICH_BASE["T"]
+    derived = boundary_inputs([t], [{"T": base}, {"T": np.array(base, dtype=float)}])
+    assert labels(derived) == boundary_classes([t])
+    ends = []
+    for d in derived:
+        m = np.asarray(d.kwargs["T"], dtype=float)
+        assert m.shape == (4, 4) and domains.pose3_problem(d.kwargs["T"], t) is None, d.label
+        assert m[3].tolist() == [0, 0, 0, 1]
+        if d.label == "translation at range ends (T)":
+            ends.append(m[:3, 3].tolist())
+            assert np.array_equal(m[:3, :3], np.asarray(ROTATION))
+        elif d.label.startswith(("whole numbers", "int64")):
+            assert m[:3, 3].tolist() == [2, -2, 3]  # 1.5, -2.25, 3.0 rounded
+            assert np.asarray(d.kwargs["T"]).dtype.kind == "i"
+        else:
+            assert m[:3, 3].tolist() == [1.5, -2.25, 3.0], d.label  # the translation kept
+    assert [20.0] * 3 in ends and [-20.0] * 3 in ends
+    by = first_of_each(derived)
+    assert np.array_equal(np.asarray(by["identity (T)"]["T"])[:3, :3], np.eye(3))
+    half = np.asarray(by["half turn (T)"]["T"])[:3, :3]
+    assert np.array_equal(half, half.T) and not np.array_equal(half, np.eye(3))
+    assert "translation at range ends (T)" not in boundary_classes([ArgType("T", "pose3")])
+
+
+def test_edge3_text_in_exponent_notation_keeps_its_tags_ids_and_values() -> None:
+    t = ArgType("t", "edge3")
+    assert boundary_classes([t]) == {
+        "CRLF line ends (t)",
+        "no final newline (t)",
+        "blank lines and trailing spaces (t)",
+        "exponent notation (t)",
+    }
+    derived = {d.label: d.kwargs["t"] for d in boundary_inputs([t], [{"t": EDGE3}])}
+    exp = derived["exponent notation (t)"]
+    assert exp.startswith("EDGE3 0 1 1.08756e+00 2.58927e-01 ") and "EDGE3 1 2 6.06173e-01" in exp
+    assert g2o_lines(exp) == g2o_lines(EDGE3)

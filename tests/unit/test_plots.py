@@ -250,3 +250,16 @@ def test_a_figure_is_drawn_once_per_installation_and_redrawn_when_its_code_chang
     monkeypatch.setattr(registry, "_SOURCES", ["another digest: the drawing code changed"])
     assert "t2" in (registry.figure_svg("test/costly") or "") and calls == [1, 1]
     registry._DRAWN.pop("test/costly", None)
+
+
+def test_every_chapter_with_exercises_has_a_figure_and_every_code_exercise_a_picture() -> None:
+    """Course-wide (the new chapters included): a teacher's figure in every chapter that has
+    exercises, and a picture of the givens for every code exercise (`slamcourse plot ID`)."""
+    from slamcourse.course.loader import load_course
+    from tests.conftest import REPO
+
+    course = load_course(REPO)
+    bare = [ch.id for ch in course.chapters if ch.exercises and not ch.figures]
+    assert bare == []
+    code = [ex for ex in course.exercise_ids if course.exercise(ex).kind == "code"]
+    assert [ex for ex in code if not has_plot(ex, course.exercise(ex).tags, {})] == []

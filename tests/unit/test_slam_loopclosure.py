@@ -158,6 +158,10 @@ def test_candidates_match_a_brute_force(graph: tuple[np.ndarray, list[pg.Edge]])
     cross = np.array([lc.block(cov, i, k) for i in range(n)])
     d2 = lc.candidate_distances(x, marginals, cross, 3)
     assert sorted(d2) == list(range(0, k - 3 + 1))
+
+    def _blocks(i: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        return marginals[i], cross[i], marginals[k]
+
     for i, value in d2.items():
         jac = np.zeros((2, 3 * n))
         local = numeric_jacobian(x[i], x[k])[:2]
@@ -165,9 +169,38 @@ def test_candidates_match_a_brute_force(graph: tuple[np.ndarray, list[pg.Edge]])
         jac[:, 3 * k : 3 * k + 3] += local[:, 3:]
         t = np.array(se2.between(x[i], x[k])[:2])
         assert value == pytest.approx(float(t @ np.linalg.solve(jac @ cov @ jac.T, t)), rel=1e-5)
+    idx, r, s = lc.relative_positions(x, marginals, cross, 3)
+    for i, ri, si in zip(idx, r, s, strict=True):  # pose by pose, the 3×3 route
+        assert np.allclose(ri, se2.between(x[i], x[k])[:2], atol=1e-12)
+        full = lc.relative_pose_covariance(x[i], x[k], marginals[i], cross[i], marginals[k])
+        assert np.allclose(si, full[:2, :2], rtol=1e-10, atol=1e-14)
+        assert d2[int(i)] == pytest.approx(lc.position_d2(x[i], x[k], *_blocks(i)), rel=1e-9)
     for gate in (1.0, 5.99, 50.0):
         got = lc.loop_candidates(x, marginals, cross, 3, gate)
         assert got == [i for i in sorted(d2) if d2[i] <= gate]
+
+
+def test_two_dof_gate_has_a_closed_form() -> None:
+    """χ²₂ is the exponential distribution of mean 2: its quantile is −2 ln(1 − p) (the
+    chapter's closed form, which the candidate search may use instead of scipy)."""
+    for p in (0.5, 0.9, 0.95, 0.99, 0.999):
+        assert lc.chi2_gate(2, p) == pytest.approx(-2 * math.log(1 - p), rel=1e-12)
+
+
+def test_candidate_search_window(graph: tuple[np.ndarray, list[pg.Edge]]) -> None:
+    """Pose ``k − gap`` is searched and ``k − gap + 1`` is not; a gap as long as the history
+    leaves nothing; indices come back increasing."""
+    x, edges = graph
+    cov = lc.covariance(x, edges)
+    n, k = len(x), len(x) - 1
+    marginals = np.array([lc.block(cov, i, i) for i in range(n)])
+    cross = np.array([lc.block(cov, i, k) for i in range(n)])
+    for gap in (1, 4, k):
+        assert max(lc.candidate_distances(x, marginals, cross, gap)) == k - gap
+        everything = lc.loop_candidates(x, marginals, cross, gap, 1e12)
+        assert everything == list(range(k - gap + 1))
+    assert lc.loop_candidates(x, marginals, cross, k + 1, 1e12) == []
+    assert lc.candidate_distances(x, marginals, cross, n + 5) == {}
 
 
 def test_ellipse_axes() -> None:

@@ -195,3 +195,79 @@ def test_loop_closures_are_decided_by_the_ids() -> None:
     edges = [pg.Edge(0, 1, (1, 0, 0), info), pg.Edge(2, 1, (1, 0, 0), info)]
     edges += [pg.Edge(0, 2, (1, 0, 0), info), pg.Edge(3, 0, (1, 0, 0), info)]
     assert rb.loop_closures(edges).tolist() == [False, False, True, True]
+
+
+# --- robust/levenberg-marquardt's reference ---------------------------------------------------
+
+
+def _reference() -> object:
+    import importlib.util
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parents[2] / "exercises" / "robust" / "reference.py"
+    spec = importlib.util.spec_from_file_location("_ref_robust_unit", path)
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+REF: object = _reference()
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.integers(0, 2**31), st.integers(3, 10), st.sampled_from([0.6, 1.2]))
+def test_dense_mistake_free_trials_equal_the_sparse_optimiser(
+    seed: int, n: int, drift: float
+) -> None:
+    """The dense loop the mutants are built on (no switch on) is the module's optimiser."""
+    poses, edges = REF.drifted_graph(seed, n, 2, drift)  # type: ignore[attr-defined]
+    plain = REF._plain(edges)  # type: ignore[attr-defined]
+    for lam0 in (1e-6, 1.0, 1e4):
+        dense, _ = REF._lm_trials(poses.tolist(), plain, lam0, 8)  # type: ignore[attr-defined]
+        sparse, _, _ = rb.levenberg_marquardt(poses, edges, 8, lam0)
+        assert np.allclose(pg.relative_to_first(dense), pg.relative_to_first(sparse), atol=1e-9)
+
+
+def test_lm_limits_tiny_lambda_is_gauss_newton_and_huge_is_a_gradient_step() -> None:
+    poses, edges = REF.drifted_graph(11, 5, 1, 0.3)  # type: ignore[attr-defined]
+    plain = REF._plain(edges)  # type: ignore[attr-defined]
+    one = REF.levenberg_marquardt(poses.tolist(), plain, 1e-9, 1)  # type: ignore[attr-defined]
+    gn = pg.relative_to_first(pg.gauss_newton_step(poses, edges))
+    assert np.allclose(one, gn, atol=1e-6)
+    # λ = 10⁴: Δ ≈ −diag(H)⁻¹ b / λ, a scaled gradient step
+    h, b = pg.linear_system(poses, edges)
+    lam = 1e4
+    step = -b[3:] / (lam * np.diag(h)[3:])
+    y = poses.copy()
+    y[1:] += step.reshape(-1, 3)
+    got = REF.levenberg_marquardt(poses.tolist(), plain, lam, 1)  # type: ignore[attr-defined]
+    assert np.allclose(got, pg.relative_to_first(y), atol=1e-6)
+    assert pg.chi2(y, edges) < pg.chi2(poses, edges)
+
+
+def test_lm_rejected_trial_returns_the_initial_guess_and_zero_trials_too() -> None:
+    poses, edges = REF.drifted_graph(4, 6, 2, 0.9)  # type: ignore[attr-defined]
+    plain = REF._plain(edges)  # type: ignore[attr-defined]
+    record = REF.lm_record(poses.tolist(), plain, 1e-6, 6)  # type: ignore[attr-defined]
+    assert [rho < 0 for _, rho, _ in record] == [True] * 5 + [False]
+    assert [lam for lam, _, _ in record] == pytest.approx(
+        [1e-6 * f for f in (1, 2, 8, 64, 1024, 32768)]
+    )
+    start = pg.relative_to_first(poses)
+    for trials in (0, 1, 5):
+        got = REF.levenberg_marquardt(poses.tolist(), plain, 1e-6, trials)  # type: ignore[attr-defined]
+        assert np.array_equal(got, start)
+    assert not np.allclose(REF.levenberg_marquardt(poses.tolist(), plain, 1e-6, 6), start)  # type: ignore[attr-defined]
+
+
+def test_lm_valid_states_the_domain() -> None:
+    poses, edges = REF.drifted_graph(4, 6, 2, 0.9)  # type: ignore[attr-defined]
+    p, e = poses.tolist(), REF._plain(edges)  # type: ignore[attr-defined]
+    valid = REF.lm_valid  # type: ignore[attr-defined]
+    assert valid(p, e, 1e-6, 8)
+    assert not valid(p, e, 0.0, 8) and not valid(p, e, 1e-6, 16)
+    assert not valid(p, e[1:], 1e-6, 8)  # pose 0 cut off from the rest
+    assert not valid(p, [[0, 0, [0, 0, 0], np.eye(3).tolist()], *e], 1e-6, 8)
+    bad = [[*x[:3], (-np.eye(3)).tolist()] if k == 0 else x for k, x in enumerate(e)]
+    assert not valid(p, bad, 1e-6, 8)

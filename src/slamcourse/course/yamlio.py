@@ -129,6 +129,14 @@ def _parse(text: str, path: str) -> Any:
         data = loader.get_single_data()
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
+        if "nesting depth" in str(exc.problem):  # PyYAML ≥ 6.0.3 caps nesting itself
+            raise CourseError(
+                Problem(
+                    path,
+                    mark.line + 1 if mark else None,
+                    "YAML nested too deeply to read; flatten the structure",
+                )
+            ) from None
         raise CourseError(
             Problem(
                 path,

@@ -48,6 +48,12 @@ domain), ``ordered: false`` (the order carries no meaning: reversed order is der
 ``size: [rows, cols]`` for a non-square ``matrix``, range ends written with π (``[-pi, pi]``,
 ``[0, 2*pi]``).
 
+``rotation`` and ``pose3`` carry a domain check of their own (:func:`rotation_problem`,
+:func:`pose3_problem`: orthonormal to :data:`ORTHONORMAL`, determinant positive, a pose's last
+row ``[0, 0, 0, 1]`` and its translation inside the range): a derived matrix that fails it is
+never emitted, a base that fails it is not transformed, and an example that fails it is
+reported where the exercise loads (:func:`outside`).
+
 Everything here is pure Python and deterministic; numpy is imported only when boundary inputs
 are derived (arrays are among them), never when an exercise is loaded.
 """
@@ -1007,9 +1013,7 @@ def rotation_problem(rows: Any) -> str | None:
         for j in range(3)
     )
     if worst > ORTHONORMAL:
-        return (
-            f"is not a rotation: RᵀR differs from I by {worst:.3g} (at most {ORTHONORMAL:g})"
-        )
+        return f"is not a rotation: RᵀR differs from I by {worst:.3g} (at most {ORTHONORMAL:g})"
     if _det3(m) <= 0:
         return "is a reflection (determinant −1), not a rotation"
     return None
@@ -1053,7 +1057,8 @@ Turn = Callable[[list[list[float]]], "list[list[float]] | None"]  # a rotation's
 
 
 def _rotation(t: ArgType) -> list[_Transform]:
-    return _rotation_classes(t) + [
+    return [
+        *_rotation_classes(t),
         _one("whole numbers as int", t.name, _whole_turn(t, array=False)),
         _one("int64 ndarray", t.name, _whole_turn(t, array=True)),
         _one("list of lists", t.name, _turn_form(t, "list"), pure=True),

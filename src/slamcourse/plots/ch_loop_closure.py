@@ -9,7 +9,9 @@ Prose figures (drawn from the INTEL file the intel chapter ships and from
   position gate for pose 166;
 - ``false-closure``: the INTEL optimum with and without one false closure.
 
-Exercise pictures draw the givens of the code exercises' first examples.
+Exercise pictures draw the givens of the code exercises' first examples (for
+``loop-candidates``: the circle of 12 poses, the current pose and the poses the gap leaves out,
+never which earlier poses pass the gate).
 """
 
 from __future__ import annotations
@@ -247,6 +249,57 @@ def candidate_closure(_: Params) -> str:
     return plane.svg("A candidate loop closure against the graph", desc, legend)
 
 
+# the first example of loop-closure/loop-candidates: a circle of 12 poses by odometry, gap 3
+SEARCH_EXAMPLE = (
+    (0.0, 0.0, 0.0),
+    (1.5, 0.0, 0.6),
+    (2.738, 0.847, 1.2),
+    (3.282, 2.245, 1.8),
+    (2.941, 3.706, 2.4),
+    (1.835, 4.719, 3.0),
+    (0.35, 4.931, -2.683),
+    (-0.995, 4.267, -2.083),
+    (-1.731, 2.96, -1.483),
+    (-1.6, 1.465, -0.883),
+    (-0.648, 0.306, -0.283),
+    (0.793, -0.113, 0.317),
+)
+SEARCH_GAP = 3
+
+
+def search_scene(_: Params) -> str:
+    x = SEARCH_EXAMPLE
+    k = len(x) - 1
+    pts = [(p[0], p[1]) for p in x]
+    plane = Plane(pts, width=440, height=400, pad=40, top=40, grid=1.0)
+    plane.path(pts, colour=MUTED, width=1.2, dash="3 3", block=True)
+    for i, (px, py, _heading) in enumerate(x[:k]):
+        searched = i <= k - SEARCH_GAP
+        plane.point(
+            px,
+            py,
+            colour=BLUE if searched else MUTED,
+            shape="circle" if searched else "cross",
+            size=4.0,
+            label=str(i),
+        )
+    plane.pose(*x[k], colour=ORANGE, label=f"pose {k} (now)")
+    desc = (
+        f"Plan view in metres with a 1 m grid: the exercise's first example, {len(x)} poses "
+        "driven by odometry round a circle from pose 0 at the origin, the current pose "
+        f"{k} at ({num(x[k][0])}, {num(x[k][1])}), back near poses 0 and 1. With a gap of "
+        f"{SEARCH_GAP}, poses 0 to {k - SEARCH_GAP} are searched (circles) and poses "
+        f"{k - SEARCH_GAP + 1} to {k - 1} are left out (crosses). Which searched poses pass "
+        "the gate is not drawn."
+    )
+    legend = [
+        ("searched (i ≤ k − gap)", BLUE, ""),
+        ("left out by the gap", MUTED, ""),
+        ("current pose k", ORANGE, ""),
+    ]
+    return plane.svg("Where could the robot be again?", desc, legend)
+
+
 FIGURES: dict[str, Figure] = {
     "loop-closure/odometry-uncertainty": odometry_uncertainty,
     "loop-closure/candidate-gate": candidate_gate,
@@ -256,4 +309,5 @@ FIGURES: dict[str, Figure] = {
 PICTURES: dict[str, Picture] = {
     "loop-closure/relative-covariance": given(two_poses),
     "loop-closure/closure-nis": given(candidate_closure),
+    "loop-closure/loop-candidates": given(search_scene),
 }

@@ -7,10 +7,13 @@ ships in ``exercises/intel/data``):
 - ``robust/damping``: χ² of INTEL after each Gauss-Newton step and each Levenberg-Marquardt
   trial;
 - ``robust/fold``: INTEL's clean optimum, plain Gauss-Newton with 10 false loop closures and
-  DCS with 100.
+  DCS with 100;
+- ``robust/lm-window``: χ² per trial of Levenberg-Marquardt from three λ₀ on the 160 INTEL
+  poses from pose 100, rejected trials marked, with undamped Gauss-Newton.
 
 Pictures of the code exercises draw givens only: the kernels' costs ``ρ(s)`` (the exercise
-asks for their derivatives) and the first example graph with its false closures marked.
+asks for their derivatives), the first example graph with its false closures marked, and the
+initial guess of ``robust/levenberg-marquardt``'s first example.
 """
 
 from __future__ import annotations
@@ -340,13 +343,152 @@ def _optimise_picture(_: Params) -> str:
     return example_graph(_first_example("robust-optimise"))
 
 
+# --- robust/lm-window --------------------------------------------------------------------------
+
+LM_WINDOW = (100, 160)
+"""The INTEL piece of ``robust/lm-window``: 160 poses from pose 100, with their loop closures."""
+LM_LAMBDAS = (1e-6, 1e-3, 1e3)
+LM_TRIALS = 20
+
+
+@lru_cache(maxsize=1)
+def window_graph() -> tuple[NDArray[np.float64], list[pg.Edge]]:
+    """The poses and the edges among them of INTEL's piece :data:`LM_WINDOW`, renumbered."""
+    graph = _intel()
+    first, count = LM_WINDOW
+    keep = range(first, first + count)
+    edges = [
+        pg.Edge(e.i - first, e.j - first, e.z, e.information)
+        for e in graph.edges
+        if e.i in keep and e.j in keep
+    ]
+    return graph.poses[first : first + count].copy(), edges
+
+
+@lru_cache(maxsize=1)
+def window_traces() -> tuple[list[float], dict[float, tuple[list[float], list[float]]]]:
+    """Gauss-Newton's χ² per step and, per λ₀ of :data:`LM_LAMBDAS`, Levenberg-Marquardt's χ²
+    after every trial (the first entry before any) and the λ of every trial."""
+    poses, edges = window_graph()
+    _, gn = pg.gauss_newton(poses, edges, LM_TRIALS)
+    lm = {}
+    for lam0 in LM_LAMBDAS:
+        _, history, lambdas = rb.levenberg_marquardt(poses, edges, LM_TRIALS, lam0)
+        lm[lam0] = (history, lambdas)
+    return gn, lm
+
+
+def lm_window_figure() -> str:
+    gn, lm = window_traces()
+    pw, ph = W - LEFT - RIGHT, H - TOP - BOTTOM
+    lo, hi = 0.0, 4.0  # log10 χ²
+
+    def sx(i: float) -> float:
+        return LEFT + i / LM_TRIALS * pw
+
+    def sy(v: float) -> float:
+        return TOP + (hi - min(max(math.log10(v), lo), hi)) / (hi - lo) * ph
+
+    body = _axes("χ² per trial, INTEL poses 100-259", "trial", "χ² (log scale)")
+    for d in range(int(lo), int(hi) + 1):
+        body.append(text(LEFT - 6, sy(10.0**d) + 4, f"10^{d}", text_anchor="end", fill="#333"))
+        body.append(
+            el("line", x1=LEFT, y1=sy(10.0**d), x2=LEFT + pw, y2=sy(10.0**d), stroke="#e4e4e4")
+        )
+    for i in range(0, LM_TRIALS + 1, 5):
+        body.append(text(sx(i), TOP + ph + 16, str(i), text_anchor="middle", fill="#333"))
+    styles = {1e-6: ("#1f6fb2", "8 4"), 1e-3: ("#b3541e", "2 3"), 1e3: ("#2e8b57", "10 3 2 3")}
+    gn_pts = [(sx(i), sy(v)) for i, v in enumerate(gn)]
+    body.append(polyline(gn_pts, stroke="#999999", stroke_width=2.0))
+    legend = [("Gauss-Newton", "#999999", "")]
+    facts = []
+    for lam0, (history, _) in lm.items():
+        colour, dash = styles[lam0]
+        pts = [(sx(i), sy(v)) for i, v in enumerate(history)]
+        body.append(polyline(pts, stroke=colour, stroke_width=2.0, stroke_dasharray=dash))
+        rejected = [i for i in range(1, len(history)) if history[i] == history[i - 1]]
+        for i, (x, y) in enumerate(pts):
+            hollow = i in rejected
+            body.append(
+                el(
+                    "circle",
+                    cx=x,
+                    cy=y,
+                    r=3.0,
+                    fill="#ffffff" if hollow else colour,
+                    stroke=colour,
+                    stroke_width=1.2,
+                )
+            )
+        name = f"LM, λ₀ = {num(lam0)}"
+        legend.append((name, colour, dash))
+        facts.append(
+            f"from λ₀ = {num(lam0)}: {len(rejected)} of {LM_TRIALS} trials rejected"
+            f"{' (trials ' + ', '.join(map(str, rejected)) + ')' if rejected else ''}, "
+            f"χ² = {num(round(history[-1], 2))} after the last"
+        )
+    body += _legend(legend)
+    body.append(text(W - RIGHT + 12, TOP + 14 + 18 * len(legend), "○ rejected trial", fill="#222"))
+    desc = (
+        f"χ² of the 160 INTEL poses from pose 100 and the edges among them, starting at "
+        f"{num(round(gn[0], 1))}. Undamped Gauss-Newton: {num(round(gn[1], 1))} after step 1, "
+        f"{num(round(gn[2], 2))} after step 2, {num(round(gn[-1], 3))} at the end. "
+        f"Levenberg-Marquardt with Marquardt's scaling and Nielsen's update, "
+        + "; ".join(facts)
+        + "."
+    )
+    return document(W, H, "Levenberg-Marquardt trials on a piece of INTEL", desc, body)
+
+
+def lm_example_graph(_: Params) -> str:
+    """The initial guess of ``robust/levenberg-marquardt``'s first example: odometry solid,
+    loop closures dashed. Givens only (the exercise asks for the optimised poses)."""
+    import yaml
+
+    from slamcourse.course.locate import bundled_course_root
+
+    path = bundled_course_root() / "exercises" / "robust" / "levenberg-marquardt.yaml"
+    example = yaml.safe_load(path.read_text(encoding="utf-8"))["examples"][0]
+    x = np.array(example["poses"], dtype=float)
+    closures = [(int(e[0]), int(e[1])) for e in example["edges"] if abs(e[0] - e[1]) != 1]
+
+    def extra(p: Callable[[float, float], tuple[float, float]]) -> list[str]:
+        out = []
+        for i, j in closures:
+            a, b = p(*x[i, :2]), p(*x[j, :2])
+            out.append(polyline([a, b], stroke="#2e8b57", stroke_width=1.5, stroke_dasharray="5 3"))
+        for k, (px, py, _) in enumerate(x):
+            cx, cy = p(float(px), float(py))
+            out.append(el("circle", cx=cx, cy=cy, r=3.5, fill="#222"))
+            out.append(text(cx + 6, cy - 6, str(k), fill="#222"))
+        return out
+
+    pairs = ", ".join(f"{i}–{j}" for i, j in closures)
+    desc = (
+        f"The initial guess of the first example: {len(x)} poses joined by odometry (solid) "
+        f"whose headings drifted, and {len(closures)} loop "
+        f"{'closure' if len(closures) == 1 else 'closures'} (dashed) between poses {pairs}. "
+        f"The example runs {example['trials']} trials from λ₀ = "
+        f"{num(float(example['lam0']))}."
+    )
+    return _plan(
+        [("odometry (initial guess)", x, "#222222", "", 1.5)],
+        "Levenberg-Marquardt example: the initial guess",
+        desc,
+        extra,
+        [("loop closure", "#2e8b57", "5 3")],
+    )
+
+
 FIGURES: dict[str, Figure] = {
     "robust/kernels": kernel_curves,
     "robust/damping": damping_figure,
     "robust/fold": fold_figure,
+    "robust/lm-window": lm_window_figure,
 }
 
 PICTURES: dict[str, Picture] = {
     "robust/robust-weights": given(lambda p: kernel_curves(K, derivative=False)),
     "robust/robust-optimise": given(_optimise_picture),
+    "robust/levenberg-marquardt": given(lm_example_graph),
 }

@@ -107,17 +107,51 @@ def position_d2(
     return float(t @ np.linalg.solve(c, t))
 
 
-def candidate_distances(
+def relative_positions(
     poses: ArrayLike, marginals: ArrayLike, cross: ArrayLike, gap: int
-) -> dict[int, float]:
-    """``{i: d²_i}`` for every pose ``i ≤ k − gap``, ``k`` the last pose (the current one).
+) -> tuple[NDArray[np.int64], Matrix, Matrix]:
+    """For every pose ``i ≤ k − gap`` (``k`` the last pose): the indices, ``r_xy`` of pose ``k``
+    seen from pose ``i`` (m×2) and its covariance ``(Σ_r)_xy`` (m×2×2).
 
-    ``marginals[i] = Σ_ii`` and ``cross[i] = Σ_ik`` (n×3×3 each)."""
+    ``marginals[i] = Σ_ii`` and ``cross[i] = Σ_ik`` (n×3×3 each). All poses at once: the
+    2×6 Jacobians of ``r_xy`` stacked, ``(Σ_r)_xy = J P Jᵀ`` by ``einsum``; equal to
+    :func:`relative_pose_covariance` pose by pose (tested)."""
     x = np.asarray(poses, dtype=float)
     m = np.asarray(marginals, dtype=float)
     c = np.asarray(cross, dtype=float)
     k = len(x) - 1
-    return {i: position_d2(x[i], x[k], m[i], c[i], m[k]) for i in range(0, k - int(gap) + 1)}
+    idx = np.arange(0, max(k - int(gap) + 1, 0), dtype=np.int64)
+    cs, sn = np.cos(x[idx, 2]), np.sin(x[idx, 2])
+    dx, dy = x[k, 0] - x[idx, 0], x[k, 1] - x[idx, 1]
+    rx, ry = cs * dx + sn * dy, -sn * dx + cs * dy
+    zero = np.zeros(len(idx))
+    # rows ∂r_x and ∂r_y by (x_i, y_i, θ_i, x_k, y_k, θ_k)
+    jac = np.stack(
+        [
+            np.stack([-cs, -sn, ry, cs, sn, zero], axis=1),
+            np.stack([sn, -cs, -rx, -sn, cs, zero], axis=1),
+        ],
+        axis=1,
+    ).reshape(len(idx), 2, 6)
+    joint = np.empty((len(idx), 6, 6))
+    joint[:, :3, :3] = m[idx]
+    joint[:, :3, 3:] = c[idx]
+    joint[:, 3:, :3] = np.transpose(c[idx], (0, 2, 1))
+    joint[:, 3:, 3:] = m[k]
+    s = np.einsum("nab,nbc,ndc->nad", jac, joint, jac)
+    return idx, np.stack([rx, ry], axis=1).reshape(len(idx), 2), (s + s.transpose(0, 2, 1)) / 2
+
+
+def candidate_distances(
+    poses: ArrayLike, marginals: ArrayLike, cross: ArrayLike, gap: int
+) -> dict[int, float]:
+    """``{i: d²_i}`` for every pose ``i ≤ k − gap``, ``k`` the last pose (the current one);
+    ``d²_i = r_xyᵀ (Σ_r)_xy⁻¹ r_xy`` (see :func:`relative_positions`)."""
+    idx, r, s = relative_positions(poses, marginals, cross, gap)
+    if len(idx) == 0:
+        return {}
+    d2 = np.einsum("na,na->n", r, np.linalg.solve(s, r[:, :, None])[:, :, 0])
+    return {int(i): float(v) for i, v in zip(idx, d2, strict=True)}
 
 
 def loop_candidates(

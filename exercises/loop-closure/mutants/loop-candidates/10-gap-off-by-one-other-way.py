@@ -15,7 +15,7 @@ def relative_jacobians(xi, xk):
 def d2_of(x, m, c, i, k):
     ji, jk = relative_jacobians(x[i], x[k])
     j = np.hstack([ji, jk])
-    joint = np.block([[m[i], c[i]], [c[i]_T, m[k]]])
+    joint = np.block([[m[i], c[i]], [c[i].T, m[k]]])
     s = (j @ joint @ j.T)[:2, :2]
     ci, si = math.cos(x[i, 2]), math.sin(x[i, 2])
     dx, dy = x[k, 0] - x[i, 0], x[k, 1] - x[i, 1]

@@ -1,4 +1,4 @@
-# mistake: the top-left 2x2 block of the information (Sigma_r inverse) used: the heading conditioned on, not marginalised
+# mistake: the information block (inverse of Sigma_r, top-left 2x2): heading conditioned on
 import math
 
 import numpy as np

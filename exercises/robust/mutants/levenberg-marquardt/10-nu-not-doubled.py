@@ -49,16 +49,16 @@ def linear_system(x, edges):
     H = np.zeros((3 * n, 3 * n))
     b = np.zeros(3 * n)
     for i, j, z, omega in edges:
-        O = np.array(omega, dtype=float)
+        om = np.array(omega, dtype=float)
         e = edge_error(x[i], x[j], z)
         A, B = edge_jacobians(x[i], x[j], z)
         si, sj = slice(3 * i, 3 * i + 3), slice(3 * j, 3 * j + 3)
-        H[si, si] += A.T @ O @ A
-        H[si, sj] += A.T @ O @ B
-        H[sj, si] += B.T @ O @ A
-        H[sj, sj] += B.T @ O @ B
-        b[si] += A.T @ O @ e
-        b[sj] += B.T @ O @ e
+        H[si, si] += A.T @ om @ A
+        H[si, sj] += A.T @ om @ B
+        H[sj, si] += B.T @ om @ A
+        H[sj, sj] += B.T @ om @ B
+        b[si] += A.T @ om @ e
+        b[sj] += B.T @ om @ e
     return H[3:, 3:], b[3:]
 
 

@@ -1,4 +1,4 @@
-# mistake: rho >= 0 accepted and a non-positive prediction counted as success (rho = 1)
+# mistake: np.asarray on the poses, so the caller's array is updated in place
 import math
 
 import numpy as np
@@ -49,21 +49,21 @@ def linear_system(x, edges):
     H = np.zeros((3 * n, 3 * n))
     b = np.zeros(3 * n)
     for i, j, z, omega in edges:
-        O = np.array(omega, dtype=float)
+        om = np.array(omega, dtype=float)
         e = edge_error(x[i], x[j], z)
         A, B = edge_jacobians(x[i], x[j], z)
         si, sj = slice(3 * i, 3 * i + 3), slice(3 * j, 3 * j + 3)
-        H[si, si] += A.T @ O @ A
-        H[si, sj] += A.T @ O @ B
-        H[sj, si] += B.T @ O @ A
-        H[sj, sj] += B.T @ O @ B
-        b[si] += A.T @ O @ e
-        b[sj] += B.T @ O @ e
+        H[si, si] += A.T @ om @ A
+        H[si, sj] += A.T @ om @ B
+        H[sj, si] += B.T @ om @ A
+        H[sj, sj] += B.T @ om @ B
+        b[si] += A.T @ om @ e
+        b[sj] += B.T @ om @ e
     return H[3:, 3:], b[3:]
 
 
 def levenberg_marquardt(poses, edges, lam0, trials):
-    x = np.array(poses, dtype=float)
+    x = np.asarray(poses, dtype=float)
     lam, nu = float(lam0), 2.0
     current = chi2(x, edges)
     for _ in range(trials):
@@ -75,9 +75,9 @@ def levenberg_marquardt(poses, edges, lam0, trials):
         candidate[:, 2] = [wrap(t) for t in candidate[:, 2]]
         new = chi2(candidate, edges)
         predicted = -2.0 * (b @ delta) - delta @ H @ delta
-        rho = (current - new) / predicted if predicted > 0 else 1.0
-        if rho >= 0:
-            x, current = candidate, new
+        rho = (current - new) / predicted if predicted > 0 else -1.0
+        if rho > 0:
+            x[:], current = candidate, new
             lam *= max(1.0 / 3.0, 1.0 - (2.0 * rho - 1.0) ** 3)
             nu = 2.0
         else:

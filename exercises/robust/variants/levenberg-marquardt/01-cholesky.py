@@ -1,7 +1,8 @@
-# mistake: np.asarray on the poses, so the caller's array is updated in place
+# method: Cholesky factorisation (scipy cho_factor/cho_solve), prediction as lam*d.D.d - b.d
 import math
 
 import numpy as np
+from scipy.linalg import cho_factor, cho_solve
 
 
 def wrap(a):
@@ -49,38 +50,37 @@ def linear_system(x, edges):
     H = np.zeros((3 * n, 3 * n))
     b = np.zeros(3 * n)
     for i, j, z, omega in edges:
-        O = np.array(omega, dtype=float)
+        om = np.array(omega, dtype=float)
         e = edge_error(x[i], x[j], z)
         A, B = edge_jacobians(x[i], x[j], z)
         si, sj = slice(3 * i, 3 * i + 3), slice(3 * j, 3 * j + 3)
-        H[si, si] += A.T @ O @ A
-        H[si, sj] += A.T @ O @ B
-        H[sj, si] += B.T @ O @ A
-        H[sj, sj] += B.T @ O @ B
-        b[si] += A.T @ O @ e
-        b[sj] += B.T @ O @ e
+        H[si, si] += A.T @ om @ A
+        H[si, sj] += A.T @ om @ B
+        H[sj, si] += B.T @ om @ A
+        H[sj, sj] += B.T @ om @ B
+        b[si] += A.T @ om @ e
+        b[sj] += B.T @ om @ e
     return H[3:, 3:], b[3:]
 
 
 def levenberg_marquardt(poses, edges, lam0, trials):
-    x = np.asarray(poses, dtype=float)
+    x = np.array(poses, dtype=float)
     lam, nu = float(lam0), 2.0
     current = chi2(x, edges)
-    for _ in range(trials):
+    for _ in range(int(trials)):
         H, b = linear_system(x, edges)
-        D = np.diag(np.diag(H))
-        delta = np.linalg.solve(H + lam * D, -b)
+        factor = cho_factor(H + lam * np.diag(np.diag(H)))
+        delta = cho_solve(factor, -b)
         candidate = x.copy()
         candidate[1:] += delta.reshape(-1, 3)
-        candidate[:, 2] = [wrap(t) for t in candidate[:, 2]]
         new = chi2(candidate, edges)
-        predicted = -2.0 * (b @ delta) - delta @ H @ delta
+        # the prediction in the form the chapter derives: lam * delta.D.delta - b.delta
+        predicted = lam * float(delta @ (np.diag(H) * delta)) - float(b @ delta)
         rho = (current - new) / predicted if predicted > 0 else -1.0
         if rho > 0:
-            x[:], current = candidate, new
+            x, current = candidate, new
             lam *= max(1.0 / 3.0, 1.0 - (2.0 * rho - 1.0) ** 3)
             nu = 2.0
         else:
-            lam *= nu
-            nu *= 2.0
+            lam, nu = lam * nu, 2.0 * nu
     return np.array([between(x[0], p) for p in x])

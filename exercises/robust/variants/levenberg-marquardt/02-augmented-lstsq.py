@@ -1,4 +1,4 @@
-# mistake: the predicted reduction with the damped matrix: -2 b.delta - delta.(H + lam D).delta
+# method: damped step by lstsq on the whitened Jacobian over sqrt(lam diag H); model prediction
 import math
 
 import numpy as np
@@ -49,32 +49,50 @@ def linear_system(x, edges):
     H = np.zeros((3 * n, 3 * n))
     b = np.zeros(3 * n)
     for i, j, z, omega in edges:
-        O = np.array(omega, dtype=float)
+        om = np.array(omega, dtype=float)
         e = edge_error(x[i], x[j], z)
         A, B = edge_jacobians(x[i], x[j], z)
         si, sj = slice(3 * i, 3 * i + 3), slice(3 * j, 3 * j + 3)
-        H[si, si] += A.T @ O @ A
-        H[si, sj] += A.T @ O @ B
-        H[sj, si] += B.T @ O @ A
-        H[sj, sj] += B.T @ O @ B
-        b[si] += A.T @ O @ e
-        b[sj] += B.T @ O @ e
+        H[si, si] += A.T @ om @ A
+        H[si, sj] += A.T @ om @ B
+        H[sj, si] += B.T @ om @ A
+        H[sj, sj] += B.T @ om @ B
+        b[si] += A.T @ om @ e
+        b[sj] += B.T @ om @ e
     return H[3:, 3:], b[3:]
 
 
+def whitened(x, edges):
+    """Rows L^T J and L^T e of every edge (Omega = L L^T), for poses 1..n-1."""
+    n = len(x)
+    rows, rhs = [], []
+    for i, j, z, omega in edges:
+        L = np.linalg.cholesky(np.array(omega, dtype=float))
+        A, B = edge_jacobians(x[i], x[j], z)
+        J = np.zeros((3, 3 * n))
+        J[:, 3 * i : 3 * i + 3] = A
+        J[:, 3 * j : 3 * j + 3] = B
+        rows.append(L.T @ J[:, 3:])
+        rhs.append(L.T @ edge_error(x[i], x[j], z))
+    return np.vstack(rows), np.concatenate(rhs)
+
+
 def levenberg_marquardt(poses, edges, lam0, trials):
+    """The damped step as a least-squares problem: minimise |r + W delta|^2 + lam |sqrt(D) delta|^2
+    by lstsq on the stacked system; the prediction is the model itself, chi2 - |r + W delta|^2."""
     x = np.array(poses, dtype=float)
     lam, nu = float(lam0), 2.0
     current = chi2(x, edges)
-    for _ in range(trials):
-        H, b = linear_system(x, edges)
-        D = np.diag(np.diag(H))
-        delta = np.linalg.solve(H + lam * D, -b)
+    for _ in range(int(trials)):
+        W, r = whitened(x, edges)
+        d = np.sum(W * W, axis=0)  # the diagonal of H = W^T W
+        big = np.vstack([W, np.diag(np.sqrt(lam * d))])
+        delta = np.linalg.lstsq(big, -np.concatenate([r, np.zeros(len(d))]), rcond=None)[0]
         candidate = x.copy()
         candidate[1:] += delta.reshape(-1, 3)
-        candidate[:, 2] = [wrap(t) for t in candidate[:, 2]]
         new = chi2(candidate, edges)
-        predicted = -2.0 * (b @ delta) - delta @ (H + lam * D) @ delta
+        model = r + W @ delta
+        predicted = float(r @ r - model @ model)
         rho = (current - new) / predicted if predicted > 0 else -1.0
         if rho > 0:
             x, current = candidate, new
