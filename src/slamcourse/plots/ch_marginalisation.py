@@ -18,6 +18,7 @@ from functools import lru_cache
 import numpy as np
 
 from slamcourse.plots.picture import Figure, Params, Picture, answer, given
+from slamcourse.plots.sparsity import cell_marks
 from slamcourse.plots.svg import document, el, fmt, num, polyline, text
 from slamcourse.slam import marginal as mg
 
@@ -239,34 +240,7 @@ def _grid(
     for k in gone:
         out.append(el("rect", x=x0, y=y0 + k * size, width=size * n, height=size, fill="#eee"))
         out.append(el("rect", x=x0 + k * size, y=y0, width=size, height=size * n, fill="#eee"))
-    for i, j in sorted(cells):
-        x, y = x0 + j * size, y0 + i * size
-        if (i, j) in fill:
-            out.append(
-                el(
-                    "rect",
-                    x=x + 1,
-                    y=y + 1,
-                    width=size - 2,
-                    height=size - 2,
-                    fill="#f3d9c4",
-                    stroke="#b3541e",
-                )
-            )
-            out.append(
-                el(
-                    "path",
-                    d=f"M{fmt(x + 3)},{fmt(y + 3)}L{fmt(x + size - 3)},"
-                    f"{fmt(y + size - 3)}M{fmt(x + size - 3)},{fmt(y + 3)}L{fmt(x + 3)},"
-                    f"{fmt(y + size - 3)}",
-                    stroke="#b3541e",
-                    stroke_width=1.5,
-                )
-            )
-        else:
-            out.append(
-                el("rect", x=x + 1, y=y + 1, width=size - 2, height=size - 2, fill="#1f4e79")
-            )
+    out.extend(cell_marks(cells, fill, x0, y0, size))
     return out
 
 

@@ -60,6 +60,16 @@ def _panel(
     size = min(CELL_MAX, PANEL / max(n, 1))
     out = [text(x0, y0 - 8, label, fill="#222", font_weight="bold")]
     out.append(el("rect", x=x0, y=y0, width=size * n, height=size * n, fill="#fff", stroke="#888"))
+    out.extend(cell_marks(cells, fill, x0, y0, size))
+    return out
+
+
+def cell_marks(
+    cells: set[tuple[int, int]], fill: set[tuple[int, int]], x0: float, y0: float, size: float
+) -> list[str]:
+    """The nonzero cells of a matrix pattern at ``(x0, y0)``, ``size`` per cell: a filled
+    square each, fill-in (``fill``) a crossed light square, so it never relies on colour."""
+    out = []
     for i, j in sorted(cells):
         x, y = x0 + j * size, y0 + i * size
         if (i, j) in fill:
