@@ -111,3 +111,27 @@ def test_an_argument_changed_in_place_is_caught_on_an_array_input() -> None:
     path = spec.path.parent / "mutants" / "add-noise" / "in-place.py"
     outcome = grade(spec, dataclasses.replace(tests, cases=arrays), path)
     assert not outcome.passed and outcome.failure.kind == "mutated"
+
+
+def test_a_failure_on_an_ndarray_input_is_reported_as_json() -> None:
+    """The verdict's details are JSON (the batch grader writes them, `check --json` prints
+    them): the failing input of an `ndarray` boundary class comes back as plain lists, and the
+    sentence still says which class it was. Graded through the real sandbox."""
+    import json
+
+    from slamcourse.kinds import get_kind
+
+    spec = COURSE.exercise("boundaries/add-noise")
+    tests = testset.build(spec)
+    arrays = [c for c in tests.cases if c.origin == "boundary: ndarray (P)"]
+    path = spec.path.parent / "mutants" / "add-noise" / "in-place.py"
+    verdict = get_kind("code").check_source(
+        spec,
+        path.read_text(encoding="utf-8"),
+        path.name,
+        tests=dataclasses.replace(tests, cases=arrays),
+        shrink=False,
+    )
+    assert not verdict.passed
+    data = json.loads(json.dumps(verdict.details))
+    assert isinstance(data["input"]["P"], list) and data["boundary"] == "ndarray (P)"

@@ -63,4 +63,11 @@ def read_files(paths: Sequence[Path]) -> list[str]:
 
 
 def dumps(data: object) -> str:
-    return json.dumps(data, indent=2, ensure_ascii=False) + "\n"
+    return json.dumps(data, indent=2, ensure_ascii=False, default=_plain) + "\n"
+
+
+def _plain(value: object) -> object:
+    """What JSON cannot write as it is: a numpy array or number as its list or value (a result
+    must be written whatever a test input held), anything else as its text."""
+    tolist = getattr(value, "tolist", None)
+    return tolist() if callable(tolist) else str(value)

@@ -418,7 +418,7 @@ class CodeKind(Kind):
             )
         args = ", ".join(f"{k}={show_exact(v)}" for k, v in failure.kwargs.items())
         details.update(
-            input=failure.kwargs,
+            input={k: to_plain(v) for k, v in failure.kwargs.items()},  # JSON: ndarrays as lists
             expected=to_plain(failure.expected),
             got=failure.got,
             frames=[
