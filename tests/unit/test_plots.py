@@ -247,7 +247,7 @@ def test_a_figure_is_drawn_once_per_installation_and_redrawn_when_its_code_chang
     registry._DRAWN.clear()  # a new process: only the disk remembers
     assert registry.figure_svg("test/costly") == first and calls == [1]
     registry._DRAWN.clear()
-    monkeypatch.setattr(registry, "_SOURCES", ["another digest: the drawing code changed"])
+    monkeypatch.setattr(registry, "_sources_digest", lambda: "the drawing code changed")
     assert "t2" in (registry.figure_svg("test/costly") or "") and calls == [1, 1]
     registry._DRAWN.pop("test/costly", None)
 

@@ -10,6 +10,7 @@ which the batch grader reads from a handed-in notebook (:mod:`slamcourse.noteboo
 
 from __future__ import annotations
 
+from abc import ABC, abstractmethod
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
@@ -50,17 +51,19 @@ def _code(text: str) -> str:
     return f"<code>{escape(text)}</code>"
 
 
-class View:
+class View(ABC):
     """A displayable result: HTML for a notebook, plain text for a console."""
 
     css_class = ""
     meta: dict[str, Any]
 
+    @abstractmethod
     def html_body(self) -> str:
-        raise NotImplementedError
+        """The view's HTML, inside the styled ``<div>`` that ``_repr_html_`` wraps it in."""
 
+    @abstractmethod
     def text(self) -> str:
-        raise NotImplementedError
+        """The same content as plain text (a console, a log)."""
 
     def _repr_html_(self) -> str:
         cls = f"slamcourse-nb {self.css_class}".strip()

@@ -12,6 +12,7 @@ example). See docs/authoring.md, "Pictures".
 from __future__ import annotations
 
 import contextlib
+import functools
 import hashlib
 import importlib
 import math
@@ -156,26 +157,24 @@ def has_plot(exercise_id: str, tags: Iterable[str], params: Params) -> bool:
 
 _DRAWN: dict[str, str] = {}
 _DRAWN_LOCK = threading.Lock()
-_SOURCES: list[str] = []
 
 
+@functools.cache
 def _sources_digest() -> str:
     """A digest of everything a figure is drawn from: the drawing and reference mathematics
     (``plots/``, ``slam/``) and the bundled course's reference code and data files. Computed once
     per process (about 2 MB of files, a few milliseconds)."""
-    if not _SOURCES:
-        from slamcourse.course.locate import bundled_course_root
+    from slamcourse.course.locate import bundled_course_root
 
-        package = Path(__file__).resolve().parent.parent
-        files = sorted((package / "plots").glob("*.py")) + sorted((package / "slam").glob("*.py"))
-        exercises = bundled_course_root() / "exercises"
-        files += sorted(exercises.glob("*/reference.py")) + sorted(exercises.glob("*/data/*"))
-        digest = hashlib.sha256()
-        for path in files:
-            with contextlib.suppress(OSError):
-                digest.update(path.name.encode() + b"\0" + path.read_bytes() + b"\0")
-        _SOURCES.append(digest.hexdigest())
-    return _SOURCES[0]
+    package = Path(__file__).resolve().parent.parent
+    files = sorted((package / "plots").glob("*.py")) + sorted((package / "slam").glob("*.py"))
+    exercises = bundled_course_root() / "exercises"
+    files += sorted(exercises.glob("*/reference.py")) + sorted(exercises.glob("*/data/*"))
+    digest = hashlib.sha256()
+    for path in files:
+        with contextlib.suppress(OSError):
+            digest.update(path.name.encode() + b"\0" + path.read_bytes() + b"\0")
+    return digest.hexdigest()
 
 
 def _cached_path(figure_id: str) -> Path | None:
