@@ -278,7 +278,7 @@ def motion_inputs() -> Any:
             "pose": st.tuples(real(-50, 50), real(-50, 50), real(-math.pi, math.pi)),
             "u": st.tuples(real(-math.pi, math.pi), real(0.1, 2.0), real(-math.pi, math.pi)),
             "alphas": st.tuples(alpha(0.015), alpha(0.02), alpha(0.01), alpha(0.0005)),
-            "n": st.integers(200, 1000),
+            "n": st.integers(100, 500),
             "seed": st.integers(0, 10**6),
         }
     ).filter(lambda d: motion_valid(**d))

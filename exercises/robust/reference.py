@@ -352,38 +352,31 @@ def _converged(text: str, kernel: str, k: float, iterations: int) -> bool:
     return bool(np.all(np.isfinite(a)) and np.max(np.abs(a - b)) < 1e-8)
 
 
+ROBUST_PIECE = 160
+"""Poses in each INTEL piece ``robust/robust-optimise`` is graded on."""
+
+
 def optimise_inputs() -> Any:
-    """Three 160-pose pieces of INTEL with 5 false closures each (DCS, Cauchy and Huber, k = 3,
-    20 or 40 steps), the whole
-    graph with 50 (DCS, k = 3, 20 steps), and synthetic graphs of 6–25 poses with 0–3 loop
-    closures and 0–3 false ones, every kernel, widths 1–5, that settle within their steps."""
+    """Two 160-pose pieces of INTEL with 5 false closures each (DCS and Huber, k = 3, 20 or 40
+    steps) and synthetic graphs of 6–25 poses with 0–3 loop closures and 0–3 false
+    ones, every kernel, widths 1–5, that settle within their steps. (The whole graph with 50
+    false closures is the chapter's demonstration and ``dcs-hundred``'s, not a graded input: a
+    dense learner's solve would take minutes per learner.)"""
     from hypothesis import strategies as st
 
     real = st.sampled_from(
         [
             {
-                "text": intel_window_with_outliers(150, 160, 5),
+                "text": intel_window_with_outliers(150, ROBUST_PIECE, 5),
                 "kernel": "dcs",
                 "k": 3.0,
                 "iterations": 20,
             },
             {
-                "text": intel_window_with_outliers(600, 160, 5),
-                "kernel": "cauchy",
-                "k": 3.0,
-                "iterations": 40,
-            },
-            {
-                "text": intel_window_with_outliers(1060, 160, 5),
+                "text": intel_window_with_outliers(1060, ROBUST_PIECE, 5),
                 "kernel": "huber",
                 "k": 3.0,
                 "iterations": 40,
-            },
-            {
-                "text": intel_whole_with_outliers(),
-                "kernel": WHOLE["kernel"],
-                "k": WHOLE["k"],
-                "iterations": WHOLE["iterations"],
             },
         ]
     )
@@ -454,9 +447,7 @@ LM_MAX_POSES = 160
 LM_WINDOWS = (
     # (first pose, poses, λ₀, trials): 160- and 100-pose pieces of INTEL with their loop
     # closures, where small λ₀ makes the first trials fail and large λ₀ crawls
-    (100, 160, 1e-3, 8),
     (80, 160, 1e-6, 10),
-    (1060, 160, 1e-6, 12),
     (1100, 100, 1e-6, 8),
     (120, 160, 1000.0, 10),
 )
@@ -616,7 +607,7 @@ def _lm_settled(
 
 
 def lm_inputs() -> Any:
-    """Five INTEL windows (100 or 160 poses, their own loop closures; small λ₀ where the first
+    """Three INTEL windows (100 or 160 poses, their own loop closures; small λ₀ where the first
     trials are rejected, large λ₀ where the steps crawl), and synthetic graphs of 3–15 poses
     with 1–4 loop closures and a drifted initial guess, λ₀ log-uniform in [10⁻⁶, 10⁴], 0–15
     trials."""

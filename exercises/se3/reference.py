@@ -291,7 +291,7 @@ def sphere_window(first: int, count: int) -> str:
 
 
 def graph_inputs() -> Any:
-    """Windows of sphere2500 (60–300 poses, with their loop closures) and synthetic graphs of
+    """Windows of sphere2500 (40–100 poses, with their loop closures) and synthetic graphs of
     2–30 poses with large rotations, 10 or 15 iterations (each converges within them)."""
     from hypothesis import strategies as st
 
@@ -302,7 +302,7 @@ def graph_inputs() -> Any:
         _, text = se3.simulate(seed, n, loops, correlated=correlated)
         return {"text": text, "iterations": it}
 
-    real = st.builds(window, st.integers(0, 2200), st.integers(60, 300))
+    real = st.builds(window, st.integers(0, 2200), st.integers(40, 100))
     made = st.builds(
         synthetic,
         st.integers(0, 2**32 - 1),

@@ -1,9 +1,10 @@
 """Content tests for the chapters beyond the lesson (``se2`` onwards).
 
 1. canonical answers pinned by hand, independently of the reference code;
-2. every code exercise's mutants (``exercises/<chapter>/mutants/<slug>/NN-name.py``, first line
-   ``# mistake: …``) fail, and its variants (``variants/<slug>/NN-name.py``, first line
-   ``# method: …``) pass, graded through the real sandbox exactly as ``slamcourse check`` does.
+2. every code exercise ships ≥ 8 mutants (``exercises/<chapter>/mutants/<slug>/NN-name.py``,
+   first line ``# mistake: …``) and ≥ 3 variants (``variants/<slug>/NN-name.py``, first line
+   ``# method: …``). That each mutant fails and each variant passes in the real sandbox is
+   checked once, by ``test_bundled_course.py::test_exercise_is_sound``.
 """
 
 from __future__ import annotations
@@ -22,8 +23,6 @@ from slamcourse.kinds import get_kind
 
 ROOT = Path(__file__).resolve().parents[2]
 CHAPTERS = ("se2", "motion", "pose-graph", "intel")
-# graded on whole optimisations: several seconds per file
-SLOW_EXERCISES = {"pose-graph/gauss-newton", "intel/optimise-g2o"}
 COURSE = load_course(bundled_course_root())
 
 
@@ -142,26 +141,7 @@ def test_intel_windows_are_drawn_by_the_whole_capstone() -> None:
     assert windows <= {d["text"] for d in outcome.drawn}
 
 
-# --- 2. mutants fail, variants pass -----------------------------------------------------------
-
-
-def _cases(group: str) -> list[object]:
-    cases = []
-    for chapter in CHAPTERS:
-        base = ROOT / "exercises" / chapter / group
-        for folder in sorted(p for p in base.iterdir() if p.is_dir()):
-            exercise = f"{chapter}/{folder.name}"
-            marks = [pytest.mark.slow] if exercise in SLOW_EXERCISES else []
-            for path in sorted(folder.glob("*.py")):
-                cases.append(
-                    pytest.param(exercise, path, id=f"{exercise}/{path.stem}", marks=marks)
-                )
-    return cases
-
-
-def _grade(exercise: str, path: Path) -> object:
-    spec = COURSE.exercise(exercise)
-    return get_kind("code").check_source(spec, path.read_text(encoding="utf-8"), path.name)
+# --- 2. enough mutants and variants -----------------------------------------------------------
 
 
 def test_every_code_exercise_has_enough_mutants_and_variants() -> None:
@@ -179,15 +159,3 @@ def test_every_code_exercise_has_enough_mutants_and_variants() -> None:
                 assert path.read_text(encoding="utf-8").startswith("# mistake: "), path
             for path in variants:
                 assert path.read_text(encoding="utf-8").startswith("# method: "), path
-
-
-@pytest.mark.parametrize(("exercise", "path"), _cases("mutants"))
-def test_mutant_is_rejected(exercise: str, path: Path) -> None:
-    verdict = _grade(exercise, path)
-    assert verdict.status in ("failed", "timeout"), verdict.feedback  # type: ignore[attr-defined]
-
-
-@pytest.mark.parametrize(("exercise", "path"), _cases("variants"))
-def test_variant_is_accepted(exercise: str, path: Path) -> None:
-    verdict = _grade(exercise, path)
-    assert verdict.passed, verdict.feedback  # type: ignore[attr-defined]

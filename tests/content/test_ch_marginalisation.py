@@ -5,7 +5,8 @@
    Schur complements), and found in the chapter's text as written;
 2. the canonical answers of the numeric exercises, by hand;
 3. the prose figures and pictures draw accessible SVG stating those figures;
-4. every code exercise's mutants fail and its variants pass, graded through the real sandbox.
+4. every code exercise has enough mutants and correct variants (graded, once, by
+   ``test_bundled_course.py``).
 """
 
 from __future__ import annotations
@@ -21,9 +22,6 @@ from types import ModuleType
 import numpy as np
 import pytest
 
-from slamcourse.course.loader import load_course
-from slamcourse.course.locate import bundled_course_root
-from slamcourse.kinds import get_kind
 from slamcourse.plots import ch_marginalisation as plots
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -241,19 +239,10 @@ def test_pictures_draw_and_hide_counts() -> None:
         parsed(plots.PICTURES[key].draw({}, False))
 
 
-# --- mutants fail, variants pass ------------------------------------------------------------------
-
-
-COURSE = load_course(bundled_course_root())
-
-
-def _cases(group: str) -> list[object]:
-    base = ROOT / "exercises" / CHAPTER / group
-    return [
-        pytest.param(f"{CHAPTER}/{folder.name}", path, id=f"{folder.name}/{path.stem}")
-        for folder in sorted(p for p in base.iterdir() if p.is_dir())
-        for path in sorted(folder.glob("*.py"))
-    ]
+# --- mutants and variants ------------------------------------------------------------------------
+# Each is graded through the real sandbox once, by the course's validation
+# (test_bundled_course.py::test_exercise_is_sound: mutants fail, variants pass); here, only that
+# there are enough of them.
 
 
 def test_code_exercises_have_enough_mutants_and_variants() -> None:
@@ -264,19 +253,3 @@ def test_code_exercises_have_enough_mutants_and_variants() -> None:
         assert len(mutants) >= 8 and len(variants) >= 3
         assert all(p.read_text(encoding="utf-8").startswith("# mistake: ") for p in mutants)
         assert all(p.read_text(encoding="utf-8").startswith("# method: ") for p in variants)
-
-
-@pytest.mark.parametrize(("exercise", "path"), _cases("mutants"))
-def test_mutant_is_rejected(exercise: str, path: Path) -> None:
-    spec = COURSE.exercise(exercise)
-    source = path.read_text(encoding="utf-8")
-    verdict = get_kind("code").check_source(spec, source, path.name)  # type: ignore[attr-defined]
-    assert verdict.status in ("failed", "timeout"), verdict.feedback
-
-
-@pytest.mark.parametrize(("exercise", "path"), _cases("variants"))
-def test_variant_is_accepted(exercise: str, path: Path) -> None:
-    spec = COURSE.exercise(exercise)
-    source = path.read_text(encoding="utf-8")
-    verdict = get_kind("code").check_source(spec, source, path.name)  # type: ignore[attr-defined]
-    assert verdict.passed, verdict.feedback

@@ -7,7 +7,9 @@
    the reference code;
 2. the figures and pictures draw (SVG with a title and a description);
 3. the four windows of the park are in victoria-park/optimise-landmarks' test set;
-4. every mutant is rejected and every variant accepted, graded through the real sandbox.
+4. every code exercise ships ≥ 8 mutants and ≥ 3 variants, each saying what it is (that each
+   mutant is rejected and each variant accepted in the real sandbox is checked once, by
+   ``test_bundled_course.py::test_exercise_is_sound``).
 """
 
 from __future__ import annotations
@@ -31,7 +33,6 @@ from scipy.stats import chi2 as chi2_dist
 
 from slamcourse.course.loader import load_course
 from slamcourse.course.locate import bundled_course_root
-from slamcourse.kinds import get_kind
 
 ROOT = Path(__file__).resolve().parents[2]
 FOLDER = ROOT / "exercises" / "victoria-park"
@@ -724,39 +725,14 @@ def test_the_test_set_holds_the_windows() -> None:
     texts = [case.kwargs["text"] for case in _tests("victoria-park/optimise-landmarks").cases]
     for first, _ in ref.WINDOWS:
         assert ref.park_window(first) in texts
-        assert ref.park_window(first).count("ODOMETRY") == 299
+        assert ref.park_window(first).count("ODOMETRY") == ref.WINDOW_POSES - 1 == 99
     spec = COURSE.exercise("victoria-park/optimise-landmarks")
     assert all(ex["text"].count("ODOMETRY") <= 20 for ex in spec.options.examples)
 
 
-# --- 4. mutants fail, variants pass -----------------------------------------------------------
-
-
-def _grade(exercise: str, path: Path) -> Any:
-    spec = COURSE.exercise(exercise)
-    return get_kind("code").check_source(  # type: ignore[attr-defined]
-        spec,
-        path.read_text(encoding="utf-8"),
-        path.name,
-        shrink=False,
-        tests=_tests(exercise),
-        max_failures=1,
-    )
-
+# --- 4. enough mutants and variants -----------------------------------------------------------
 
 SLUGS = ("landmark-jacobian", "optimise-landmarks")
-
-
-def _files(group: str) -> list[Any]:
-    cases = []
-    for slug in SLUGS:
-        slow = slug == "optimise-landmarks" and group == "variants"
-        marks = [pytest.mark.slow] if slow else []
-        for path in sorted((FOLDER / group / slug).glob("*.py")):
-            cases.append(
-                pytest.param(f"victoria-park/{slug}", path, id=f"{slug}/{path.stem}", marks=marks)
-            )
-    return cases
 
 
 def test_enough_mutants_and_variants() -> None:
@@ -766,15 +742,3 @@ def test_enough_mutants_and_variants() -> None:
         assert len(mutants) >= 8 and len(variants) >= 3
         assert all(p.read_text(encoding="utf-8").startswith("# mistake: ") for p in mutants)
         assert all(p.read_text(encoding="utf-8").startswith("# method: ") for p in variants)
-
-
-@pytest.mark.parametrize(("exercise", "path"), _files("mutants"))
-def test_mutant_is_rejected(exercise: str, path: Path) -> None:
-    verdict = _grade(exercise, path)
-    assert verdict.status in ("failed", "timeout"), verdict.feedback
-
-
-@pytest.mark.parametrize(("exercise", "path"), _files("variants"))
-def test_variant_is_accepted(exercise: str, path: Path) -> None:
-    verdict = _grade(exercise, path)
-    assert verdict.passed, verdict.feedback

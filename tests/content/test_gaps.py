@@ -1,9 +1,9 @@
 """The teaching gaps of chapters 5, 6, 8, 12 and 13 (issue 16): their references against
 independent computations, and every figure the new prose quotes.
 
-The new code exercises' mutants and variants are graded by the chapters' existing suites
-(``test_mutants_ch5_8.py`` for vision, ``test_beyond_filters.py`` for ekf-slam and jcbb), which
-collect every code exercise of those chapters; they are not graded a second time here.
+The new code exercises' solutions, starters, mutants and variants are graded, like every code
+exercise's, by the course's validation (``test_bundled_course.py::test_exercise_is_sound``);
+they are not graded a second time here.
 """
 
 from __future__ import annotations

@@ -137,3 +137,16 @@ def test_shared_tests_are_built_once_and_survive_a_round_trip(tmp_path: Any) -> 
     shared.save(tmp_path / "t.pickle")
     again = testset.SharedTests.load(tmp_path / "t.pickle")
     assert [c.kwargs for c in again.get(SPEC).cases] == [c.kwargs for c in first.cases]
+
+
+def test_a_hidden_run_draws_a_quarter_of_max_examples() -> None:
+    """Fresh inputs catch code fitted to the visible ones; a quarter of ``max_examples`` (at
+    least ten, at most all of them) per hidden run is enough for that, while the visible inputs
+    carry the exactness."""
+    assert [testset.hidden_count(n) for n in (1, 8, 20, 40, 100, 200)] == [1, 8, 10, 10, 25, 50]
+    tests = testset.build(SPEC, hidden_seeds=[testset.hidden_seed("s", SPEC.id, 0)])
+    hidden = [c for c in tests.cases if c.hidden]
+    want = testset.hidden_count(OPTS.max_examples)
+    assert want < OPTS.max_examples and 0 < len(hidden) <= want
+    assert testset.hidden_spec(SPEC).options.max_examples == want
+    assert SPEC.options.max_examples == OPTS.max_examples  # the exercise itself is unchanged

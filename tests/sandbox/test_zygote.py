@@ -235,3 +235,21 @@ def test_the_caller_can_stop_a_batch_once_it_has_enough(make_worker: MakeWorker)
     assert time.monotonic() - start < 2.0
     assert [r.value for r in results] == [0, 0.01]
     assert not worker.alive
+
+
+def test_a_zygote_asked_to_preload_imports_after_its_first_fork() -> None:
+    """``preload``: modules the zygote imports once its first worker is forked, so every later
+    worker finds them imported (scipy for the optimisers on real data); the first worker is not
+    kept waiting for them."""
+    source = """
+        import sys
+        def f():
+            return "scipy.sparse.linalg" in sys.modules
+        """
+    with Zygote.spawn(preload=("scipy.sparse.linalg", "no_such_module_at_all")) as z:
+        first, second = load(z, source), load(z, source)
+        assert first.call([]).value is False  # type: ignore[attr-defined]
+        assert second.call([]).value is True  # type: ignore[attr-defined]
+    with Zygote.spawn() as z:
+        load(z, source)
+        assert load(z, source).call([]).value is False  # type: ignore[attr-defined]

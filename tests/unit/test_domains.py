@@ -812,3 +812,36 @@ def test_edge3_text_in_exponent_notation_keeps_its_tags_ids_and_values() -> None
     exp = derived["exponent notation (t)"]
     assert exp.startswith("EDGE3 0 1 1.08756e+00 2.58927e-01 ") and "EDGE3 1 2 6.06173e-01" in exp
     assert g2o_lines(exp) == g2o_lines(EDGE3)
+
+
+def test_large_bases_come_last_and_inadmissible_inputs_do_not_count() -> None:
+    """A class is about values and types, not size: a base far larger than the others (a real
+    data set among small synthetic ones) is used only where the small ones give no input in
+    the domain; an input ``admissible`` rejects does not count towards a class's two."""
+    t = ArgType("v", "vector")
+    small = [{"v": [1.5, 2.5 + k], "k": k} for k in range(4)]
+    large = {"v": [0.5 + i for i in range(200)], "k": 99}
+    derived = [d for d in boundary_inputs([t], [large, *small]) if d.label == "tuple (v)"]
+    assert len(derived) == 2 and 99 not in [d.kwargs["k"] for d in derived]  # (given first)
+    without_large = [d for d in boundary_inputs([t], small) if d.label == "tuple (v)"]
+    assert [d.kwargs for d in derived] == [d.kwargs for d in without_large]
+
+    def only_large(kwargs: dict[str, Any]) -> bool:
+        return len(kwargs["v"]) > 100
+
+    derived = [
+        d
+        for d in boundary_inputs([t], [large, *small], admissible=only_large)
+        if d.label == "tuple (v)"
+    ]
+    assert [d.kwargs["k"] for d in derived] == [99]  # the small ones were tried and refused
+    seen: list[int] = []
+
+    def the_third(kwargs: dict[str, Any]) -> bool:
+        seen.append(kwargs["k"])
+        return kwargs["k"] >= 2
+
+    derived = [
+        d for d in boundary_inputs([t], small, admissible=the_third) if d.label == "tuple (v)"
+    ]
+    assert [d.kwargs["k"] for d in derived] == [2, 3]  # two of the class, both in the domain

@@ -75,6 +75,10 @@ DEFAULT_LIMIT = 300
 """Boundary inputs :func:`boundary_inputs` returns at most (first bases first)."""
 SPREAD = 2
 """Bases each transform is applied to (one may lie outside the exercise's ``valid`` domain)."""
+MAX_REJECTED = 64
+"""Derived inputs outside the domain a transform may meet before it gives up on its class."""
+LARGE_BASE = 4
+"""A base more than this many times the median base's size (:func:`_size`) is used last."""
 
 TYPES: dict[str, str] = {
     "real": "a float (optional range)",
@@ -202,6 +206,7 @@ def boundary_inputs(
     bases: Sequence[dict[str, Any]],
     *,
     limit: int = DEFAULT_LIMIT,
+    admissible: Callable[[dict[str, Any]], bool] | None = None,
 ) -> list[Derived]:
     """The boundary inputs of ``types``, derived from ``bases`` (ordinary input dicts: the
     exercise's examples and drawn inputs).
@@ -210,6 +215,9 @@ def boundary_inputs(
     and changes something, in order of preference: the least trivial first (the largest share
     of numbers that are nonzero and not whole), else in the order given; a value set to a
     range's end (``lowest value``, ``highest value``) starts from the bases nearest to it.
+    Bases more than :data:`LARGE_BASE` times the median base's size come after all others.
+    ``admissible(kwargs)``: whether a derived input lies in the exercise's domain; one that
+    does not is skipped and the next base tried (without it, every changed input counts).
     Two bases, so that one that the exercise's ``valid`` rejects leaves another. A transform
     that changes nothing on any base (they all have the property already, e.g. all are lists)
     yields the last bases given (drawn ones rather than examples) unchanged, a base not yet
@@ -227,7 +235,12 @@ def boundary_inputs(
         key = _key(base)
         if all(key != k for _, _, k in distinct):
             distinct.append((len(distinct), base, key))
-    ordered = sorted(distinct, key=lambda b: -_score(b[1]))  # stable: ties in the order given
+    # a boundary class is about values and types, not size: large bases (a real data set among
+    # small synthetic ones) are used last, so that the class is reached at a small input's cost
+    sizes = [_size(base) for _, base, _ in distinct]
+    large_above = LARGE_BASE * sorted(sizes)[len(sizes) // 2] if sizes else 0
+    large = {b[0] for b, size in zip(distinct, sizes, strict=True) if size > large_above}
+    ordered = sorted(distinct, key=lambda b: (b[0] in large, -_score(b[1])))  # stable: ties kept
     shown: set[int] = set()  # bases already given unchanged for a class
     rounds: list[list[Derived]] = [[] for _ in range(SPREAD)]
     for transform in transforms:
@@ -235,9 +248,12 @@ def boundary_inputs(
         found_keys: list[Any] = []
         unchanged: list[tuple[int, dict[str, Any]]] = []
         candidates = ordered
+        rejected = 0
         if transform.near is not None:  # e.g. the largest count from the largest bases
             name, target = transform.near
-            candidates = sorted(ordered, key=lambda b: _distance(b[1][name], target))
+            candidates = sorted(
+                ordered, key=lambda b: (b[0] in large, _distance(b[1][name], target))
+            )
         for place, base, base_key in candidates:
             try:
                 out = transform.make(base)
@@ -249,6 +265,11 @@ def boundary_inputs(
             if key == base_key:
                 unchanged.append((place, out))
             elif key not in found_keys:
+                if admissible is not None and not admissible(out):
+                    rejected += 1
+                    if rejected >= MAX_REJECTED:
+                        break
+                    continue
                 found.append(out)
                 found_keys.append(key)
                 if len(found) >= SPREAD:
@@ -1474,6 +1495,20 @@ def _score(kwargs: dict[str, Any]) -> float:
     nonzero = sum(1 for x in numbers if x != 0)
     fractional = sum(1 for x in numbers if math.isfinite(x) and x != math.floor(x))
     return (nonzero + fractional) / len(numbers)
+
+
+def _size(v: Any) -> int:
+    """How large an input is: its numbers, plus a text's length in eights (about one number
+    per eight characters), containers summed."""
+    if isinstance(v, str):
+        return 1 + len(v) // 8
+    if isinstance(v, dict):
+        return sum(_size(x) for x in v.values())
+    if isinstance(v, list | tuple):
+        return sum(_size(x) for x in v)
+    if _is_array(v):
+        return max(1, int(v.size))
+    return 1
 
 
 def _collect(v: Any, out: list[float], cap: int) -> None:

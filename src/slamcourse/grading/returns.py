@@ -8,6 +8,8 @@ trusted parent, before any comparison.
 
 from __future__ import annotations
 
+import copy
+import itertools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -181,8 +183,6 @@ def compare(
 def _judged(
     spec: tuple[str, ...] | str, got: Any, want: Any, judge: Judge, kwargs: dict[str, Any]
 ) -> Mismatch | None:
-    import copy
-
     from slamcourse.errors import GraderError
 
     if spec == "array":
@@ -202,14 +202,31 @@ def _judged(
         form = Mismatch(problem) if problem else None
     if form is not None:
         return form
+    # the judge gets copies: it cannot change the input or the value the feedback shows (a
+    # rectangular array of numbers, checked above, is copied at numpy's speed)
+    mine = _copy_array(got) if spec == "array" else copy.deepcopy(got)
     try:
-        verdict = judge(copy.deepcopy(got), want, copy.deepcopy(kwargs))
+        verdict = judge(mine, want, copy.deepcopy(kwargs))
     except Exception as exc:
         raise GraderError(
             f"the exercise's judge failed on a value of the declared form: "
             f"{type(exc).__name__}: {exc}"
         ) from exc
     return None if verdict is None else Mismatch(str(verdict))
+
+
+def _copy_array(got: Any) -> Any:
+    """A copy of a rectangular nested list of ints and floats (types kept)."""
+    import numpy as np
+
+    if not isinstance(got, list):
+        return got
+    level: list[Any] = got
+    while level and set(map(type, level)) == {list}:
+        level = list(itertools.chain.from_iterable(level))
+    if set(map(type, level)) <= {float}:
+        return np.array(got, dtype=float).tolist()
+    return copy.deepcopy(got)
 
 
 def _loose(kind: str, got: Any, want: Any) -> str | None:
@@ -288,9 +305,15 @@ def _close_arrays(got: Any, want: Any, tol: Tolerance) -> bool:
 
     if not isinstance(got, list) or not isinstance(want, list):
         return False
-    text = repr(got)  # a float or int never prints as True/False: booleans are not numbers
-    if "True" in text or "False" in text:
-        return False
+    level: list[Any] = got  # booleans are not numbers: look at every entry's type, level by level
+    while True:
+        kinds = set(map(type, level))
+        if kinds == {list}:
+            level = list(itertools.chain.from_iterable(level))
+            continue
+        if not kinds <= {int, float}:  # booleans, ragged rows, anything else: look closely
+            return False
+        break
     try:
         g = np.array(got)
         w = np.array(want, dtype=float)

@@ -14,7 +14,7 @@ visible part for itself. A test set is, in this order:
 3. the **drawn** inputs: the course's shipped recording, else the learner's cache, else a
    Hypothesis draw with the exercise's fixed seed (the same sequence a passing run draws);
 4. in grading mode, the **hidden** inputs: Hypothesis draws with seeds derived from the
-   instructor's secret, which no learner's check ever meets.
+   instructor's secret, which no learner's check ever meets (:func:`hidden_count` per run).
 
 An input that occurs twice (same values *and* types: ``1`` and ``1.0``, a tuple and a list
 differ) is kept once, at its first place, so a strategy that always draws the same data set
@@ -26,6 +26,7 @@ here once: grading a submission is then one pass of calls and comparisons
 from __future__ import annotations
 
 import copy
+import functools
 import hashlib
 import json
 import math
@@ -61,11 +62,11 @@ class Case:
     expected: Any
     origin: str
 
-    @property
+    @functools.cached_property
     def hidden(self) -> bool:
         return self.origin.startswith("hidden")
 
-    @property
+    @functools.cached_property
     def fixed(self) -> bool:
         """An explicit example or a boundary input (not drawn at random)."""
         return self.origin == "example" or self.origin.startswith("boundary")
@@ -144,6 +145,29 @@ def draw(spec: ExerciseSpec, seed: int, *, examples: Sequence[dict[str, Any]] = 
     return drawn
 
 
+HIDDEN_SHARE = 4
+"""A hidden run draws ``max_examples // HIDDEN_SHARE`` inputs (at least :data:`HIDDEN_MIN`, at
+most ``max_examples``): fresh inputs catch code fitted to the visible ones, while the visible
+inputs, which the validator proves reject every shipped mutant, carry the exactness."""
+HIDDEN_MIN = 10
+
+
+def hidden_count(max_examples: int) -> int:
+    """How many inputs one hidden run draws for an exercise with ``max_examples``."""
+    return min(max_examples, max(HIDDEN_MIN, max_examples // HIDDEN_SHARE))
+
+
+def hidden_spec(spec: ExerciseSpec) -> ExerciseSpec:
+    """``spec`` with ``max_examples`` set to :func:`hidden_count` (what :func:`draw` reads)."""
+    import dataclasses
+
+    opts = spec.options
+    count = hidden_count(opts.max_examples)
+    if count == opts.max_examples:
+        return spec
+    return dataclasses.replace(spec, options=dataclasses.replace(opts, max_examples=count))
+
+
 def _finite(value: Any) -> bool:
     value = to_plain(value)
     if isinstance(value, list):
@@ -199,26 +223,40 @@ def build(
     cases: list[Case] = []
     seen: set[str] = set()
 
+    judged: dict[str, tuple[bool, Any]] = {}  # a derived input's key: (in the domain, want)
+
+    def admissible(kwargs: dict[str, Any]) -> bool:
+        """Whether a derived input lies in the exercise's domain (``valid``, ``assume``, the
+        reference defined and finite there); the reference's output is kept for :func:`add`."""
+        key = input_key(kwargs)
+        if key not in judged:
+            try:
+                inside = (valid is None or bool(valid(**copy.deepcopy(kwargs)))) and (
+                    assumed is None or bool(assumed(**copy.deepcopy(kwargs)))
+                )
+                want = to_plain(ref(**copy.deepcopy(kwargs))) if inside else None
+            except Exception:  # outside the reference's domain: not an input the prompt allows
+                inside, want = False, None
+            judged[key] = (inside and _finite(want), want)
+        return judged[key][0]
+
     def add(kwargs: dict[str, Any], origin: str, *, derived: bool = False) -> bool:
         """Add one input; True if the test set holds it afterwards (added now or before)."""
         key = input_key(kwargs)
         if key in seen:
             return True
-        try:
-            if derived and valid is not None and not valid(**copy.deepcopy(kwargs)):
+        if derived:
+            if not admissible(kwargs):
                 return False
-            if derived and assumed is not None and not assumed(**copy.deepcopy(kwargs)):
-                return False
-            want = to_plain(ref(**copy.deepcopy(kwargs)))
-        except Exception as exc:
-            if derived:  # outside the reference's domain: not an input the prompt allows
-                return False
-            raise GraderError(
-                f"the reference failed on {kwargs}: {type(exc).__name__}: {exc}; "
-                "the exercise's 'arguments' must exclude undefined inputs"
-            ) from exc
-        if derived and not _finite(want):
-            return False
+            want = judged[key][1]
+        else:
+            try:
+                want = to_plain(ref(**copy.deepcopy(kwargs)))
+            except Exception as exc:
+                raise GraderError(
+                    f"the reference failed on {kwargs}: {type(exc).__name__}: {exc}; "
+                    "the exercise's 'arguments' must exclude undefined inputs"
+                ) from exc
         seen.add(key)
         cases.append(Case(kwargs, want, origin))
         return True
@@ -232,15 +270,17 @@ def build(
 
         bases = [*opts.examples, *drawn[: BOUNDARY_BASES + len(opts.examples)]]
         found = set()
-        for derived in boundary_inputs(types, bases):
+        for derived in boundary_inputs(types, bases, admissible=admissible):
             if add(derived.kwargs, f"boundary: {derived.label}", derived=True):
                 found.add(derived.label)  # (an input already there reaches the class too)
         classes = tuple(sorted(found))
     for kwargs in drawn:
         add(kwargs, "drawn")
-    for run, hidden in enumerate(hidden_seeds):
-        for kwargs in draw(spec, hidden):
-            add(kwargs, f"hidden {run + 1}")
+    if hidden_seeds:
+        sized = hidden_spec(spec)
+        for run, hidden in enumerate(hidden_seeds):
+            for kwargs in draw(sized, hidden):
+                add(kwargs, f"hidden {run + 1}")
     return TestSet(spec.id, seed, cases, recorded, classes)
 
 

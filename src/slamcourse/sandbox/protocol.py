@@ -38,6 +38,8 @@ MAX_TEXT = 2000
 MAX_FRAMES = 20
 
 _CONSTANTS = {"NaN": math.nan, "Infinity": math.inf, "-Infinity": -math.inf}
+_DIGITS_AS_D = bytes.maketrans(b"0123456789", b"d" * 10)
+_LONG_RUN = b"d" * (MAX_INT_DIGITS + 1)  # (a run of the letter d, too, takes the careful path)
 
 
 class ProtocolViolation(Exception):
@@ -155,7 +157,11 @@ def _parse_int(text: str) -> int:
 def decode_frame(line: bytes) -> dict[str, Any]:
     """Parse one reply line into a dict with an integer ``id`` and a string ``status``."""
     try:
-        obj = json.loads(line, parse_constant=_CONSTANTS.__getitem__, parse_int=_parse_int)
+        text = line.decode("utf-8")
+        if len(line) <= MAX_INT_DIGITS or _LONG_RUN not in line.translate(_DIGITS_AS_D):
+            obj = json.loads(text, parse_constant=_CONSTANTS.__getitem__)
+        else:
+            obj = json.loads(text, parse_constant=_CONSTANTS.__getitem__, parse_int=_parse_int)
     except ProtocolViolation:
         raise
     except (ValueError, RecursionError, KeyError, MemoryError) as exc:
@@ -176,6 +182,9 @@ def value_of(frame: dict[str, Any]) -> Any:
     return value if frame.get("$plain") is True else plain_value(value)
 
 
+_LEAVES = frozenset({type(None), bool, int, float, str})
+
+
 def plain_value(value: Any, depth: int = 0) -> Any:
     """Validate a decoded return value: JSON scalars, lists, and unsupported markers only."""
     if depth > MAX_DEPTH:
@@ -183,6 +192,12 @@ def plain_value(value: Any, depth: int = 0) -> Any:
     if value is None or type(value) in (bool, int, float, str):
         return value
     if type(value) is list:
+        if _LEAVES.issuperset(map(type, value)):  # a row of numbers: decoded fresh, kept
+            return value
+        if depth < MAX_DEPTH and all(
+            type(v) is list and _LEAVES.issuperset(map(type, v)) for v in value
+        ):  # a matrix
+            return value
         return [plain_value(v, depth + 1) for v in value]
     if type(value) is dict and len(value) == 1 and type(value.get("unsupported")) is str:
         return Unsupported(clean_text(value["unsupported"], 100))

@@ -946,21 +946,26 @@ class Zygote:
         limits: Limits | None = None,
         require_isolation: bool = False,
         force: str | None = None,
+        preload: Sequence[str] = (),
     ) -> Zygote:
         """Start a zygote and wait until it is ready (raises :class:`SandboxError` if it cannot
         start). ``require_isolation`` and ``force`` as for :meth:`Worker.spawn`; ``limits``
-        gives the start-up time and the size of the private ``/tmp``."""
+        gives the start-up time and the size of the private ``/tmp``; ``preload``: modules the
+        zygote imports once it has forked its first worker (e.g. ``scipy.sparse``), so later
+        workers do not import them again."""
         limits = limits if limits is not None else Limits()
         zygote = cls(limits=limits, isolation=_isolation(require_isolation, force))
-        zygote._start()
+        zygote._start(preload)
         return zygote
 
-    def _start(self) -> None:
+    def _start(self, preload: Sequence[str] = ()) -> None:
         res, limits = self._res, self._limits
         ours, theirs = socket.socketpair(socket.AF_UNIX, socket.SOCK_SEQPACKET)
         started = time.monotonic()
         try:
             args = [f"zygote={theirs.fileno()}", f"frame={limits.frame_bytes}"]
+            if preload:
+                args.append("preload=" + ",".join(preload))
             cmd, env, cwd = _command(self._isolation, limits, res, args, "zygote")
             res.proc = subprocess.Popen(
                 cmd,

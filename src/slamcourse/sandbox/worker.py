@@ -607,6 +607,7 @@ def _zygote(control_fd: int) -> int:
 
     version = _np.__version__ if _np is not None else None
     answer({"status": "ready", "numpy": version, "pid": os.getpid()})
+    preload = [name for name in _CFG.get("preload", "").split(",") if name]
     while True:
         try:
             data, fds, _flags, _addr = socket.recv_fds(sock, 1 << 16, 16)
@@ -623,6 +624,9 @@ def _zygote(control_fd: int) -> int:
             answer({"status": "forked", "pid": pid}, theirs)
             for fd in theirs:
                 os.close(fd)
+            if preload:  # after the first fork (its worker starts meanwhile), before the next
+                _preload(preload)
+                preload = []
         elif op == "kill":
             pid = req.get("pid")
             if type(pid) is int and pid in children and children[pid] is None:
@@ -648,6 +652,16 @@ def _zygote(control_fd: int) -> int:
             with contextlib.suppress(OSError):
                 os.kill(pid, signal.SIGKILL)
     return 0
+
+
+def _preload(names: list[str]) -> None:
+    """Import modules learners' code often imports (scipy), so that every worker forked from
+    now on finds them imported; one that fails to import is left to the learner's own import."""
+    import importlib
+
+    for name in names:
+        with contextlib.suppress(Exception):
+            importlib.import_module(name)
 
 
 def _fork_worker(
@@ -680,6 +694,7 @@ def _fork_worker(
             _CFG["cg"] = ",".join(str(fd) for fd in cg_fds)
             _CFG.update({"req": str(req_r), "resp": str(resp_w)})
             _CFG.pop("zygote", None)
+            _CFG.pop("preload", None)
             sys.argv[1:] = [f"{k}={v}" for k, v in _CFG.items()]  # as a started worker's
             global _JOINED, _REFUSED
             _JOINED, _REFUSED = _contain(_CFG)

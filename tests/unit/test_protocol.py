@@ -1,0 +1,64 @@
+"""Replies from the sandbox (slamcourse.sandbox.protocol): untrusted bytes decoded into plain
+data, at the speed a batch needs (one reply per call, thousands per submission)."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from slamcourse.sandbox.protocol import (
+    MAX_DEPTH,
+    MAX_INT_DIGITS,
+    ProtocolViolation,
+    Unsupported,
+    decode_frame,
+    value_of,
+)
+
+
+def reply(value_json: bytes) -> bytes:
+    return b'{"id":3,"status":"ok","value":' + value_json + b"}"
+
+
+finite = st.floats(allow_nan=False, allow_infinity=False)
+leaves = st.one_of(st.none(), st.booleans(), st.integers(-(10**30), 10**30), finite, st.text())
+values = st.recursive(leaves, lambda inner: st.lists(inner, max_size=5), max_leaves=40)
+
+
+@given(values)
+def test_a_value_comes_back_as_it_was_sent(value: object) -> None:
+    frame = decode_frame(json.dumps({"id": 3, "status": "ok", "value": value}).encode())
+    assert value_of(frame) == value
+
+
+@given(st.lists(st.lists(finite, min_size=3, max_size=3), min_size=70, max_size=90))
+def test_a_matrix_with_more_rows_than_the_depth_limit_is_plain_data(rows: list) -> None:
+    frame = decode_frame(reply(json.dumps(rows).encode()))
+    assert value_of(frame) == rows
+
+
+def test_long_integers_are_refused_in_short_and_long_replies() -> None:
+    too_long = b"7" * (MAX_INT_DIGITS + 1)
+    for padding in (b"", b"[" + b"1.5," * 2000 + b"1.5],"):
+        with pytest.raises(ProtocolViolation, match="digits"):
+            decode_frame(reply(b"[" + padding + too_long + b"]"))
+    fine = b"7" * MAX_INT_DIGITS
+    assert value_of(decode_frame(reply(b"[" + b"1.5," * 2000 + fine + b"]")))[-1] == int(fine)
+
+
+def test_markers_nesting_and_constants() -> None:
+    marker = value_of(decode_frame(reply(b'[[1.0], {"unsupported": "set"}]')))
+    assert marker[0] == [1.0] and isinstance(marker[1], Unsupported)
+    deep = b"[" * (MAX_DEPTH + 2) + b"]" * (MAX_DEPTH + 2)
+    with pytest.raises(ProtocolViolation, match="deeply"):
+        value_of(decode_frame(reply(deep)))
+    with pytest.raises(ProtocolViolation, match="not a marker"):
+        value_of(decode_frame(reply(b'[{"a": 1}, {"b": 2}]')))
+    nan, inf = value_of(decode_frame(reply(b"[NaN, -Infinity]")))
+    assert math.isnan(nan) and inf == -math.inf
+    with pytest.raises(ProtocolViolation, match="unreadable"):
+        decode_frame(b'{"id":3,"status":"ok","value":"\xff"}')
