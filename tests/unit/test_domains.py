@@ -592,8 +592,8 @@ def test_counts_reach_both_ends_as_ints_from_the_nearest_bases() -> None:
     by: dict[str, list[dict[str, Any]]] = {}
     for d in boundary_inputs([t], bases):
         by.setdefault(d.label, []).append(d.kwargs)
-    assert [kw["k"] for kw in by["lowest value (n)"]] == [2, 0]
-    assert [kw["k"] for kw in by["highest value (n)"]] == [1, 3]
+    assert [kw["k"] for kw in by["lowest value (n)"]] == [2, 0][: domains.SPREAD]
+    assert [kw["k"] for kw in by["highest value (n)"]] == [1, 3][: domains.SPREAD]
     assert all(type(kw["n"]) is int for kws in by.values() for kw in kws)
 
 
@@ -601,10 +601,10 @@ def test_a_class_every_base_already_has_is_shown_by_the_last_bases() -> None:
     t = ArgType("v", "vector")
     bases = [{"v": [1.5, 2.5], "k": k} for k in range(4)]
     derived = [d for d in boundary_inputs([t], bases) if d.label == "list (v)"]
-    assert [d.kwargs["k"] for d in derived] == [3, 2]
+    assert [d.kwargs["k"] for d in derived] == [3, 2][: domains.SPREAD]
     arrays = [{"v": np.array([1.5, 2.5 + k])} for k in range(3)]
     derived = [d for d in boundary_inputs([t], arrays) if d.label == "ndarray (v)"]
-    assert [d.kwargs["v"][1] for d in derived] == [4.5, 3.5]
+    assert [d.kwargs["v"][1] for d in derived] == [4.5, 3.5][: domains.SPREAD]
 
 
 def test_bases_of_another_shape_are_skipped_and_the_limit_holds() -> None:
@@ -817,12 +817,12 @@ def test_edge3_text_in_exponent_notation_keeps_its_tags_ids_and_values() -> None
 def test_large_bases_come_last_and_inadmissible_inputs_do_not_count() -> None:
     """A class is about values and types, not size: a base far larger than the others (a real
     data set among small synthetic ones) is used only where the small ones give no input in
-    the domain; an input ``admissible`` rejects does not count towards a class's two."""
+    the domain; an input ``admissible`` rejects does not count towards a class's inputs."""
     t = ArgType("v", "vector")
     small = [{"v": [1.5, 2.5 + k], "k": k} for k in range(4)]
     large = {"v": [0.5 + i for i in range(200)], "k": 99}
     derived = [d for d in boundary_inputs([t], [large, *small]) if d.label == "tuple (v)"]
-    assert len(derived) == 2 and 99 not in [d.kwargs["k"] for d in derived]  # (given first)
+    assert len(derived) == domains.SPREAD and 99 not in [d.kwargs["k"] for d in derived]
     without_large = [d for d in boundary_inputs([t], small) if d.label == "tuple (v)"]
     assert [d.kwargs for d in derived] == [d.kwargs for d in without_large]
 
@@ -844,4 +844,17 @@ def test_large_bases_come_last_and_inadmissible_inputs_do_not_count() -> None:
     derived = [
         d for d in boundary_inputs([t], small, admissible=the_third) if d.label == "tuple (v)"
     ]
-    assert [d.kwargs["k"] for d in derived] == [2, 3]  # two of the class, both in the domain
+    assert [d.kwargs["k"] for d in derived] == [2, 3][: domains.SPREAD]  # in the domain
+    assert seen[0] == 1  # (tried first, refused)
+
+
+def test_an_empty_sequence_in_another_form_is_a_last_resort() -> None:
+    """``[]`` as a tuple or an array shows nothing a function could get wrong (an in-place
+    change of an empty array changes nothing): such a class is derived from a base whose
+    argument holds values, where there is one."""
+    t = ArgType("s", "vector")
+    bases = [{"s": [], "k": 1.5}, {"s": [0.3, 4.5], "k": 2.5}]
+    by = first_of_each(boundary_inputs([t], bases))
+    assert list(by["ndarray (s)"]["s"]) == [0.3, 4.5] and by["tuple (s)"]["s"] == (0.3, 4.5)
+    alone = first_of_each(boundary_inputs([t], bases[:1]))
+    assert len(alone["ndarray (s)"]["s"]) == 0  # nothing better: the empty one still shows it

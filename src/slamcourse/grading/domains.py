@@ -74,7 +74,9 @@ PI = math.pi
 DEFAULT_LIMIT = 300
 """Boundary inputs :func:`boundary_inputs` returns at most (first bases first)."""
 SPREAD = 2
-"""Bases each transform is applied to (one may lie outside the exercise's ``valid`` domain)."""
+"""Inputs per boundary class, each in the exercise's domain (``admissible``), from the most
+telling bases that give one: two, because a class can show nothing on one base (an edge line
+moved first in a file with a single edge) and something on the next."""
 MAX_REJECTED = 64
 """Derived inputs outside the domain a transform may meet before it gives up on its class."""
 LARGE_BASE = 4
@@ -215,10 +217,12 @@ def boundary_inputs(
     and changes something, in order of preference: the least trivial first (the largest share
     of numbers that are nonzero and not whole), else in the order given; a value set to a
     range's end (``lowest value``, ``highest value``) starts from the bases nearest to it.
-    Bases more than :data:`LARGE_BASE` times the median base's size come after all others.
+    Bases more than :data:`LARGE_BASE` times the median base's size come after all others; a
+    change of form (a tuple, an array) of an empty argument is used only where no other base
+    gives the class.
     ``admissible(kwargs)``: whether a derived input lies in the exercise's domain; one that
-    does not is skipped and the next base tried (without it, every changed input counts).
-    Two bases, so that one that the exercise's ``valid`` rejects leaves another. A transform
+    does not is skipped and the next base tried (without it, every changed input counts). A
+    transform
     that changes nothing on any base (they all have the property already, e.g. all are lists)
     yields the last bases given (drawn ones rather than examples) unchanged, a base not yet
     given for another class first, under the class's label. The other arguments keep the
@@ -249,6 +253,7 @@ def boundary_inputs(
         unchanged: list[tuple[int, dict[str, Any]]] = []
         candidates = ordered
         rejected = 0
+        weak: list[tuple[Any, dict[str, Any]]] = []
         if transform.near is not None:  # e.g. the largest count from the largest bases
             name, target = transform.near
             candidates = sorted(
@@ -265,6 +270,9 @@ def boundary_inputs(
             if key == base_key:
                 unchanged.append((place, out))
             elif key not in found_keys:
+                if transform.pure and _only_empty_changed(base, out):
+                    weak.append((key, out))  # [] as an array shows nothing: a last resort
+                    continue
                 if admissible is not None and not admissible(out):
                     rejected += 1
                     if rejected >= MAX_REJECTED:
@@ -274,6 +282,12 @@ def boundary_inputs(
                 found_keys.append(key)
                 if len(found) >= SPREAD:
                     break
+        for key, out in weak:
+            if len(found) >= SPREAD:
+                break
+            if admissible is None or admissible(out):
+                found.append(out)
+                found_keys.append(key)
         if not found:  # every base has the property already: the last bases given (drawn
             # ones, after the examples) show it, each base for one class only if it can
             latest = sorted(unchanged, key=lambda u: (u[0] in shown, -u[0]))[:SPREAD]
@@ -1495,6 +1509,20 @@ def _score(kwargs: dict[str, Any]) -> float:
     nonzero = sum(1 for x in numbers if x != 0)
     fractional = sum(1 for x in numbers if math.isfinite(x) and x != math.floor(x))
     return (nonzero + fractional) / len(numbers)
+
+
+def _only_empty_changed(base: dict[str, Any], out: dict[str, Any]) -> bool:
+    """Whether every argument a transform changed is empty (``[]`` given as a tuple or an
+    array: another form, but nothing a function could get wrong in it)."""
+    changed = [n for n in out if n in base and _key(out[n]) != _key(base[n])]
+    return bool(changed) and all(_length(out[n]) == 0 for n in changed)
+
+
+def _length(v: Any) -> int | None:
+    try:
+        return len(v)
+    except TypeError:
+        return None
 
 
 def _size(v: Any) -> int:
