@@ -216,16 +216,15 @@ def _judged(
 
 
 def _copy_array(got: Any) -> Any:
-    """A copy of a rectangular nested list of ints and floats (types kept)."""
-    import numpy as np
-
+    """A copy of a value the judge may read: a list of numbers or a list of rows of numbers is
+    copied row by row (numbers cannot change), anything else deeply."""
     if not isinstance(got, list):
         return got
-    level: list[Any] = got
-    while level and set(map(type, level)) == {list}:
-        level = list(itertools.chain.from_iterable(level))
-    if set(map(type, level)) <= {float}:
-        return np.array(got, dtype=float).tolist()
+    numbers = {int, float}
+    if set(map(type, got)) <= numbers:
+        return got[:]
+    if all(type(row) is list and set(map(type, row)) <= numbers for row in got):
+        return [row[:] for row in got]
     return copy.deepcopy(got)
 
 
