@@ -253,3 +253,21 @@ def test_a_zygote_asked_to_preload_imports_after_its_first_fork() -> None:
     with Zygote.spawn() as z:
         load(z, source)
         assert load(z, source).call([]).value is False  # type: ignore[attr-defined]
+
+
+def test_a_preloaded_zygote_leaves_learners_their_memory_headroom() -> None:
+    """The modules a zygote preloads take address space a learner never asked for: a worker
+    forked after the preload gets ``RLIMIT_AS`` raised by what the preload added (scipy: about
+    140 MiB), so its code has the headroom of a worker with numpy alone."""
+    source = """
+        import resource
+        def f():
+            return resource.getrlimit(resource.RLIMIT_AS)[0]
+        """
+    limits = Limits()
+    with Zygote.spawn(force="rlimits", preload=("scipy.sparse.linalg",)) as z:
+        first, second = load(z, source, limits), load(z, source, limits)
+        before = first.call([]).value  # type: ignore[attr-defined]
+        after = second.call([]).value  # type: ignore[attr-defined]
+    assert before == limits.memory_bytes
+    assert limits.memory_bytes + (50 << 20) < after < limits.memory_bytes + (400 << 20)

@@ -625,7 +625,10 @@ def _zygote(control_fd: int) -> int:
             for fd in theirs:
                 os.close(fd)
             if preload:  # after the first fork (its worker starts meanwhile), before the next
+                global _PRELOADED
+                before = _address_space()
                 _preload(preload)
+                _PRELOADED = max(0, _address_space() - before)
                 preload = []
         elif op == "kill":
             pid = req.get("pid")
@@ -651,6 +654,23 @@ def _zygote(control_fd: int) -> int:
                 os.killpg(pid, signal.SIGKILL)
             with contextlib.suppress(OSError):
                 os.kill(pid, signal.SIGKILL)
+    return 0
+
+
+_PRELOADED = 0
+"""Bytes of address space the zygote's preload added: a worker forked after it gets that much
+more ``RLIMIT_AS``, so a learner keeps the headroom of a worker with numpy alone."""
+
+
+def _address_space() -> int:
+    """This process's virtual memory size in bytes (0 where /proc cannot tell)."""
+    try:
+        with open("/proc/self/status", encoding="ascii", errors="replace") as status:
+            for line in status:
+                if line.startswith("VmSize:"):
+                    return int(line.split()[1]) * 1024
+    except (OSError, ValueError, IndexError):
+        pass
     return 0
 
 
@@ -695,6 +715,8 @@ def _fork_worker(
             _CFG.update({"req": str(req_r), "resp": str(resp_w)})
             _CFG.pop("zygote", None)
             _CFG.pop("preload", None)
+            if _PRELOADED and "as" in _CFG:  # the preloaded modules are not the learner's
+                _CFG["as"] = str(int(_CFG["as"]) + _PRELOADED)
             sys.argv[1:] = [f"{k}={v}" for k, v in _CFG.items()]  # as a started worker's
             global _JOINED, _REFUSED
             _JOINED, _REFUSED = _contain(_CFG)
