@@ -77,8 +77,6 @@ SPREAD = 2
 """Inputs per boundary class, each in the exercise's domain (``admissible``), from the most
 telling bases that give one: two, because a class can show nothing on one base (an edge line
 moved first in a file with a single edge) and something on the next."""
-MAX_REJECTED = 64
-"""Derived inputs outside the domain a transform may meet before it gives up on its class."""
 LARGE_BASE = 4
 """A base more than this many times the median base's size (:func:`_size`) is used last."""
 
@@ -252,7 +250,6 @@ def boundary_inputs(
         found_keys: list[Any] = []
         unchanged: list[tuple[int, dict[str, Any]]] = []
         candidates = ordered
-        rejected = 0
         weak: list[tuple[Any, dict[str, Any]]] = []
         if transform.near is not None:  # e.g. the largest count from the largest bases
             name, target = transform.near
@@ -274,9 +271,6 @@ def boundary_inputs(
                     weak.append((key, out))  # [] as an array shows nothing: a last resort
                     continue
                 if admissible is not None and not admissible(out):
-                    rejected += 1
-                    if rejected >= MAX_REJECTED:
-                        break
                     continue
                 found.append(out)
                 found_keys.append(key)
@@ -1514,7 +1508,7 @@ def _score(kwargs: dict[str, Any]) -> float:
 def _only_empty_changed(base: dict[str, Any], out: dict[str, Any]) -> bool:
     """Whether every argument a transform changed is empty (``[]`` given as a tuple or an
     array: another form, but nothing a function could get wrong in it)."""
-    changed = [n for n in out if n in base and _key(out[n]) != _key(base[n])]
+    changed = [n for n in out if out[n] is not base.get(n)]  # (a transform keeps the others)
     return bool(changed) and all(_length(out[n]) == 0 for n in changed)
 
 

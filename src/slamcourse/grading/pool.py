@@ -17,7 +17,7 @@ from typing import Any
 from slamcourse.errors import SandboxError
 from slamcourse.sandbox import Limits, Worker, Zygote
 
-ZYGOTE_PRELOAD = ("scipy.linalg", "scipy.sparse", "scipy.sparse.linalg")
+ZYGOTE_PRELOAD = ("scipy.linalg", "scipy.sparse.linalg")  # (the latter imports scipy.sparse)
 """What a zygote imports after its first fork: scipy, which optimisers on real data use (0.17 s
 per import otherwise, in every worker of an exercise that imports it)."""
 

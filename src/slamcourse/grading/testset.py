@@ -33,7 +33,7 @@ import math
 import pickle
 import threading
 from collections.abc import Callable, Iterable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -159,13 +159,11 @@ def hidden_count(max_examples: int) -> int:
 
 def hidden_spec(spec: ExerciseSpec) -> ExerciseSpec:
     """``spec`` with ``max_examples`` set to :func:`hidden_count` (what :func:`draw` reads)."""
-    import dataclasses
-
     opts = spec.options
     count = hidden_count(opts.max_examples)
     if count == opts.max_examples:
         return spec
-    return dataclasses.replace(spec, options=dataclasses.replace(opts, max_examples=count))
+    return replace(spec, options=replace(opts, max_examples=count))
 
 
 def _finite(value: Any) -> bool:

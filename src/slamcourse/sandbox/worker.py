@@ -625,10 +625,7 @@ def _zygote(control_fd: int) -> int:
             for fd in theirs:
                 os.close(fd)
             if preload:  # after the first fork (its worker starts meanwhile), before the next
-                global _PRELOADED
-                before = _address_space()
                 _preload(preload)
-                _PRELOADED = max(0, _address_space() - before)
                 preload = []
         elif op == "kill":
             pid = req.get("pid")
@@ -676,12 +673,16 @@ def _address_space() -> int:
 
 def _preload(names: list[str]) -> None:
     """Import modules learners' code often imports (scipy), so that every worker forked from
-    now on finds them imported; one that fails to import is left to the learner's own import."""
+    now on finds them imported; one that fails to import is left to the learner's own import.
+    Sets :data:`_PRELOADED` to the address space they took."""
     import importlib
 
+    global _PRELOADED
+    before = _address_space()
     for name in names:
         with contextlib.suppress(Exception):
             importlib.import_module(name)
+    _PRELOADED = max(0, _address_space() - before)
 
 
 def _fork_worker(
