@@ -3,30 +3,29 @@ import math
 import numpy as np
 
 
-def relative_jacobians(xi, xk):
-    """J_i and J_k of r = x_i^-1 (+) x_k at the given poses."""
-    c, s = math.cos(xi[2]), math.sin(xi[2])
-    dx, dy = xk[0] - xi[0], xk[1] - xi[1]
-    ji = np.array([[-c, -s, -s * dx + c * dy], [s, -c, -c * dx - s * dy], [0.0, 0.0, -1.0]])
-    jk = np.array([[c, s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0]])
-    return ji, jk
-
-
 def loop_candidates(poses, marginals, cross, gap, confidence):
     x = np.asarray(poses, dtype=float)
+    k = len(x) - 1
+    searched = max(k - int(gap) + 1, 0)  # poses 0 .. k - gap
+    if searched == 0:
+        return []
     m = np.asarray(marginals, dtype=float)
     c = np.asarray(cross, dtype=float)
-    k = len(x) - 1
-    gate = -2.0 * math.log(1.0 - confidence)  # the chi-square quantile with 2 dof
-    out = []
-    for i in range(k - int(gap) + 1):
-        ji, jk = relative_jacobians(x[i], x[k])
-        j = np.hstack([ji, jk])
-        joint = np.block([[m[i], c[i]], [c[i].T, m[k]]])
-        s = (j @ joint @ j.T)[:2, :2]
-        ci, si = math.cos(x[i, 2]), math.sin(x[i, 2])
-        dx, dy = x[k, 0] - x[i, 0], x[k, 1] - x[i, 1]
-        r = np.array([ci * dx + si * dy, -si * dx + ci * dy])
-        if float(r @ np.linalg.solve(s, r)) <= gate:
-            out.append(i)
-    return out
+    # r_xy = R_i' w with w = t_k - t_i, and Sigma_r = R_i' Sigma_w R_i, so
+    # d^2 = r' Sigma_r^-1 r = w' Sigma_w^-1 w: the rotation cancels and the world frame will do.
+    # To first order dw = L_i dx_i + L_k dx_k with L_i = [-I | (w_y, -w_x)'] (turning pose i
+    # swings pose k around it) and L_k = [I | 0], for every searched pose at once.
+    w = x[k, :2] - x[:searched, :2]
+    L = np.zeros((searched, 2, 3))
+    L[:, 0, 0] = L[:, 1, 1] = -1.0
+    L[:, 0, 2], L[:, 1, 2] = w[:, 1], -w[:, 0]
+    # Sigma_w = L_i S_ii L_i' + L_i S_ik L_k' + (L_i S_ik L_k')' + L_k S_kk L_k'
+    shared = (L @ c[:searched])[:, :, :2]
+    s = L @ m[:searched] @ L.transpose(0, 2, 1) + shared + shared.transpose(0, 2, 1)
+    s += m[k, :2, :2]
+    # w' Sigma_w^-1 w with the 2 x 2 inverse written out
+    sxx, sxy, syy = s[:, 0, 0], s[:, 0, 1], s[:, 1, 1]
+    wx, wy = w[:, 0], w[:, 1]
+    d2 = (syy * wx * wx - 2.0 * sxy * wx * wy + sxx * wy * wy) / (sxx * syy - sxy * sxy)
+    gate = -2.0 * math.log1p(-confidence)  # the chi-square quantile with 2 dof
+    return np.flatnonzero(d2 <= gate).tolist()

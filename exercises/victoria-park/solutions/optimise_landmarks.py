@@ -1,114 +1,118 @@
-import math
-
 import numpy as np
+from scipy.linalg import solveh_banded
+
+BANDED = 40  # from this many poses on, solve along the chain (measured: dense is faster below)
 
 
-def wrap(a):
-    return (a + math.pi) % (2 * math.pi) - math.pi
+def _wrap(a):
+    """Angles into (-pi, pi]."""
+    return np.pi - np.remainder(np.pi - a, 2 * np.pi)
 
 
-def rot_t(theta):
-    c, s = math.cos(theta), math.sin(theta)
-    return np.array([[c, s], [-s, c]])
+def _rot_t(theta):
+    """``R(θ)ᵀ`` for every angle of ``theta``: shape (K, 2, 2)."""
+    c, s = np.cos(theta), np.sin(theta)
+    return np.stack([c, s, -s, c], axis=-1).reshape(-1, 2, 2)
 
 
-def odometry_error(xi, xj, z):
-    """e = z^-1 (+) (xi^-1 (+) xj) and its Jacobians A (by xi) and B (by xj)."""
-    rz, ri = rot_t(z[2]), rot_t(xi[2])
-    d = xj[:2] - xi[:2]
-    e = np.zeros(3)
-    e[:2] = rz @ (ri @ d - z[:2])
-    e[2] = wrap(xj[2] - xi[2] - z[2])
-    ci, si = math.cos(xi[2]), math.sin(xi[2])
-    d_ri = np.array([[-si, ci], [-ci, -si]])
-    a, b = np.zeros((3, 3)), np.zeros((3, 3))
-    a[:2, :2] = -rz @ ri
-    a[:2, 2] = rz @ d_ri @ d
-    a[2, 2] = -1.0
-    b[:2, :2] = rz @ ri
-    b[2, 2] = 1.0
-    return e, a, b
-
-
-def landmark_error(x, tree, z):
-    """e = R^T (l - t) - z and its Jacobians A (2x3, by the pose) and B (2x2, by l)."""
-    rt = rot_t(x[2])
-    h = rt @ (tree - x[:2])
-    a = np.zeros((2, 3))
-    a[:, :2] = -rt
-    a[:, 2] = [h[1], -h[0]]
-    return h - z, a, rt
-
-
-def optimise_landmarks(text, iterations):
+def _read(text):
+    """The ODOMETRY and LANDMARK lines as two float arrays, (M, 11) and (K, 7), file order."""
     odo, obs = [], []
     for line in text.splitlines():
         f = line.split()
-        if not f:
-            continue
-        if f[0] == "ODOMETRY":
-            c = [float(v) for v in f[6:12]]
-            cov = np.array([[c[0], c[1], c[2]], [c[1], c[3], c[4]], [c[2], c[4], c[5]]])
-            odo.append((int(f[1]), int(f[2]), np.array([float(v) for v in f[3:6]]), cov))
-        elif f[0] == "LANDMARK":
-            c = [float(v) for v in f[5:8]]
-            cov = np.array([[c[0], c[1]], [c[1], c[2]]])
-            obs.append((int(f[1]), int(f[2]), np.array([float(f[3]), float(f[4])]), cov))
-    pose_ids = sorted({o[0] for o in odo} | {o[1] for o in odo} | {o[0] for o in obs})
-    tree_ids = sorted({o[1] for o in obs})
-    pk = {p: k for k, p in enumerate(pose_ids)}
-    lk = {p: k for k, p in enumerate(tree_ids)}
+        if f and f[0] == "ODOMETRY":
+            odo.append(f[1:12])
+        elif f and f[0] == "LANDMARK":
+            obs.append(f[1:8])
+    return np.array(odo, dtype=float).reshape(-1, 11), np.array(obs, dtype=float).reshape(-1, 7)
+
+
+def _solve(h, b, n):
+    """Solve ``h @ step = b`` for the state without pose 0: ``3(n - 1)`` pose columns, then
+    the trees'.
+
+    Odometry only links neighbours, so the poses' block ``T`` of ``h`` is banded (five
+    diagonals above the main one) and the trees' block ``D`` is small. For a long chain, solve
+    ``T`` banded for the trees' columns ``C`` and the poses' right-hand side at once, then the
+    trees from the Schur complement ``D - Cᵀ T⁻¹ C``, then the poses. A short one is cheaper
+    dense.
+    """
+    if n < BANDED:
+        return np.linalg.solve(h, b)
+    p = 3 * (n - 1)
+    t, c, d = h[:p, :p], h[:p, p:], h[p:, p:]
+    band = np.zeros((6, p))  # upper band storage: band[5 - k, k:] is T's k-th superdiagonal
+    for k in range(6):
+        band[5 - k, k:] = np.diagonal(t, k)
+    y = solveh_banded(band, np.column_stack([c, b[:p]]), check_finite=False)
+    yc, yb = y[:, :-1], y[:, -1]
+    trees = np.linalg.solve(d - c.T @ yc, b[p:] - c.T @ yb)
+    return np.concatenate([yb - yc @ trees, trees])
+
+
+def optimise_landmarks(text, iterations):
+    odo, obs = _read(text)
+    # the chain, in file order: ODOMETRY line k links pose k to pose k + 1
+    pose_ids = np.concatenate([odo[:1, 0], odo[:, 1]])
+    tree_ids, seen = np.unique(obs[:, 1], return_inverse=True)
     n, m = len(pose_ids), len(tree_ids)
+    seen_from = np.searchsorted(pose_ids, obs[:, 0])
+    oz, lz = odo[:, 2:5], obs[:, 2:4]
+    # information matrices Σ⁻¹, from the upper triangles
+    oinf = np.linalg.inv(odo[:, [5, 6, 7, 6, 8, 9, 7, 9, 10]].reshape(-1, 3, 3))
+    linf = np.linalg.inv(obs[:, [4, 5, 5, 6]].reshape(-1, 2, 2))
 
-    # initial guess: dead reckoning, then each tree at its first sighting
+    # initial guess: dead reckoning along the chain, then every tree at its first sighting
+    # (a row vector times R(θ)ᵀ is (R(θ) z)ᵀ)
     x = np.zeros((n, 3))
-    for i, j, z, _ in odo:
-        xi = x[pk[i]]
-        x[pk[j], :2] = xi[:2] + rot_t(xi[2]).T @ z[:2]
-        x[pk[j], 2] = wrap(xi[2] + z[2])
-    trees = np.zeros((m, 2))
-    placed = set()
-    for i, tree, z, _ in obs:
-        if tree not in placed:
-            xi = x[pk[i]]
-            trees[lk[tree]] = xi[:2] + rot_t(xi[2]).T @ z
-            placed.add(tree)
+    x[1:, 2] = np.cumsum(oz[:, 2])
+    x[1:, :2] = np.cumsum((oz[:, None, :2] @ _rot_t(x[:-1, 2]))[:, 0], axis=0)  # R(θ_k) z_k
+    x[:, 2] = _wrap(x[:, 2])
+    first = np.unique(seen, return_index=True)[1]
+    trees = x[seen_from[first], :2] + (lz[first, None] @ _rot_t(x[seen_from[first], 2]))[:, 0]
 
-    odo_info = [np.linalg.inv(o[3]) for o in odo]
-    obs_info = [np.linalg.inv(o[3]) for o in obs]
+    # the state columns of every factor, and where each entry of its J^T Ω J lands in H
     size = 3 * n + 2 * m
+    ocols = 3 * np.arange(n - 1)[:, None] + np.arange(6)  # poses k and k + 1, side by side
+    lcols = np.concatenate(
+        [3 * seen_from[:, None] + np.arange(3), 3 * n + 2 * seen[:, None] + np.arange(2)], 1
+    )
+    cols = np.concatenate([ocols.ravel(), lcols.ravel()])
+    cells = np.concatenate([(c[:, :, None] * size + c[:, None, :]).ravel() for c in (ocols, lcols)])
+
+    # [J | e] of every factor: the Jacobians' constant entries are set once
+    jo = np.zeros((n - 1, 3, 7))
+    jo[:, 2, 2], jo[:, 2, 5] = -1.0, 1.0
+    jl = np.zeros((len(obs), 2, 6))
+    rzz = (_rot_t(oz[:, 2]) @ oz[:, :2, None])[:, :, 0]  # R(dθ)ᵀ (dx, dy)
     for _ in range(int(iterations)):
-        h = np.zeros((size, size))
-        b = np.zeros(size)
-        for (i, j, z, _), om in zip(odo, odo_info, strict=True):
-            a_, b_ = 3 * pk[i], 3 * pk[j]
-            e, ja, jb = odometry_error(x[pk[i]], x[pk[j]], z)
-            h[a_ : a_ + 3, a_ : a_ + 3] += ja.T @ om @ ja
-            h[a_ : a_ + 3, b_ : b_ + 3] += ja.T @ om @ jb
-            h[b_ : b_ + 3, a_ : a_ + 3] += jb.T @ om @ ja
-            h[b_ : b_ + 3, b_ : b_ + 3] += jb.T @ om @ jb
-            b[a_ : a_ + 3] += ja.T @ om @ e
-            b[b_ : b_ + 3] += jb.T @ om @ e
-        for (i, tree, z, _), om in zip(obs, obs_info, strict=True):
-            a_, b_ = 3 * pk[i], 3 * n + 2 * lk[tree]
-            e, ja, jb = landmark_error(x[pk[i]], trees[lk[tree]], z)
-            h[a_ : a_ + 3, a_ : a_ + 3] += ja.T @ om @ ja
-            h[a_ : a_ + 3, b_ : b_ + 2] += ja.T @ om @ jb
-            h[b_ : b_ + 2, a_ : a_ + 3] += jb.T @ om @ ja
-            h[b_ : b_ + 2, b_ : b_ + 2] += jb.T @ om @ jb
-            b[a_ : a_ + 3] += ja.T @ om @ e
-            b[b_ : b_ + 2] += jb.T @ om @ e
-        step = np.linalg.solve(h[3:, 3:], -b[3:])
+        # odometry: e = (R(θ_k + dθ)ᵀ (t_k+1 - t_k) - R(dθ)ᵀ (dx, dy), θ_k+1 - θ_k - dθ);
+        # with r = R(θ_k + dθ)ᵀ (t_k+1 - t_k): A = [[-Rᵀ, (r_y, -r_x)ᵀ], [0, -1]], B = diag(Rᵀ, 1)
+        rt = _rot_t(x[:-1, 2] + oz[:, 2])
+        r = (rt @ (x[1:, :2] - x[:-1, :2])[:, :, None])[:, :, 0]
+        jo[:, :2, :2], jo[:, :2, 3:5] = -rt, rt
+        jo[:, 0, 2], jo[:, 1, 2] = r[:, 1], -r[:, 0]
+        jo[:, :2, 6] = r - rzz
+        jo[:, 2, 6] = _wrap(x[1:, 2] - x[:-1, 2] - oz[:, 2])
+        # sightings: e = r - z with r = R(θ_i)ᵀ (l - t_i): A = [-Rᵀ | (r_y, -r_x)ᵀ], B = Rᵀ
+        rt = _rot_t(x[seen_from, 2])
+        r = (rt @ (trees[seen] - x[seen_from, :2])[:, :, None])[:, :, 0]
+        jl[:, :, :2], jl[:, :, 3:5] = -rt, rt
+        jl[:, 0, 2], jl[:, 1, 2] = r[:, 1], -r[:, 0]
+        jl[:, :, 5] = r - lz
+        # J^T Ω [J | e] holds a factor's blocks of H and its entries of b; sum them all
+        qo = jo[:, :, :6].transpose(0, 2, 1) @ oinf @ jo
+        ql = jl[:, :, :5].transpose(0, 2, 1) @ linf @ jl
+        h = np.bincount(
+            cells, np.concatenate([qo[:, :, :6].ravel(), ql[:, :, :5].ravel()]), size * size
+        )
+        b = np.bincount(cols, np.concatenate([qo[:, :, 6].ravel(), ql[:, :, 5].ravel()]), size)
+        step = _solve(h.reshape(size, size)[3:, 3:], -b[3:], n)  # pose 0 held fixed
         x[1:] += step[: 3 * (n - 1)].reshape(-1, 3)
-        x[:, 2] = [wrap(t) for t in x[:, 2]]
-        trees += step[3 * (n - 1) :].reshape(-1, 2)
+        x[:, 2] = _wrap(x[:, 2])
+        trees = trees + step[3 * (n - 1) :].reshape(-1, 2)
 
     # everything seen from pose 0 (which never moved from the origin, but say it anyway)
-    r0 = rot_t(x[0, 2])
-    out = []
-    for k in range(n):
-        p = r0 @ (x[k, :2] - x[0, :2])
-        out += [p[0], p[1], wrap(x[k, 2] - x[0, 2])]
-    for k in range(m):
-        out += list(r0 @ (trees[k] - x[0, :2]))
-    return np.array(out)
+    r0t = _rot_t(x[:1, 2])[0]
+    poses = np.column_stack([(x[:, :2] - x[0, :2]) @ r0t.T, _wrap(x[:, 2] - x[0, 2])])
+    return np.concatenate([poses.ravel(), ((trees - x[0, :2]) @ r0t.T).ravel()])
