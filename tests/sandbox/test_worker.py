@@ -63,6 +63,39 @@ def test_numpy_inside_and_arrays_returned(make_worker: MakeWorker) -> None:
     assert np.array_equal(np.asarray(result.value, dtype=np.float64), np.array(expected))
 
 
+def test_large_float_arrays_cross_as_bytes_and_arrive_as_lists(make_worker: MakeWorker) -> None:
+    """A float array of BINARY_FLOATS entries or more travels as its float64 bytes; the
+    parent gets exactly what ``tolist()`` gives (special values and float32 included), and an
+    int array stays ints."""
+    worker, loaded = make_worker(
+        """
+        import numpy as np
+        def f(kind):
+            a = np.linspace(-3.0, 3.0, 60).reshape(20, 3)
+            a[0] = [np.nan, -0.0, np.inf]
+            return {
+                "f64": a, "view": a[::2, 1:], "f32": a.astype(np.float32),
+                "ints": np.arange(40).reshape(20, 2), "nested": (a[0], [a]),
+            }[kind]
+        """
+    )
+    assert loaded.ok
+    a = np.linspace(-3.0, 3.0, 60).reshape(20, 3)
+    a[0] = [np.nan, -0.0, np.inf]
+    expected = {
+        "f64": a.tolist(),
+        "view": a[::2, 1:].tolist(),
+        "f32": a.astype(np.float32).tolist(),
+        "ints": np.arange(40).reshape(20, 2).tolist(),
+        "nested": [a[0].tolist(), [a.tolist()]],
+    }
+    for kind, want in expected.items():
+        result = worker.call([kind])
+        assert result.status == "ok", (kind, result)
+        assert repr(result.value) == repr(want), kind  # bit for bit: nan, -0.0, inf
+    assert type(worker.call(["ints"]).value[0][0]) is int
+
+
 def test_numpy_scalars_and_dtypes(make_worker: MakeWorker) -> None:
     worker, loaded = make_worker(
         """

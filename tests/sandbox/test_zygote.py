@@ -84,6 +84,98 @@ def test_a_call_that_changes_an_argument_is_reported(make_worker: MakeWorker) ->
     assert worker.call([[1.0], [1.0], ()], check=False).mutated == ()
 
 
+@pytest.mark.parametrize("with_array", [False, True], ids=["plain-data", "array-in-request"])
+def test_every_kind_of_in_place_change_is_found(make_worker: MakeWorker, with_array: bool) -> None:
+    """Plain arguments are compared by their marshal bytes, a request with an array by deep
+    copies: both find the same changes by the same rule (types exact, floats by value, NaN
+    equal to NaN, -0.0 equal to 0.0)."""
+    worker, loaded = make_worker(
+        """
+        import numpy as np
+        def f(how, x, extra):
+            if how == "set":
+                x[0][1] = 2.5
+            elif how == "int":
+                x[0][0] = 1                  # 1.0 -> 1: another type
+            elif how == "zero":
+                x[0][0] = -0.0               # 0.0 -> -0.0: equal, no change
+            elif how == "nan":
+                x[1] = float("nan")          # NaN -> another NaN: no change
+            elif how == "array":
+                x[0] = np.array(x[0])        # a row replaced by an equal array
+            elif how == "tuple":
+                x[2][0].append(9)            # a list inside a tuple
+            elif how == "dict":
+                x[3]["b"] = x[3].pop("a")    # keys reordered
+            elif how == "grow":
+                x.append(None)
+            return 0
+        """
+    )
+    assert loaded.ok
+    import numpy as np
+
+    def argument() -> list:
+        return [[0.0, 1.5], float("nan"), ([1],), {"a": 1, "b": 2}]
+
+    extra = np.zeros(2) if with_array else "no array"
+    hows = ["none", "set", "int", "zero", "nan", "array", "tuple", "dict", "grow"]
+    results = worker.call_many([[how, argument(), extra] for how in hows])
+    changed = {how: r.mutated for how, r in zip(hows, results, strict=True)}
+    assert changed == {
+        "none": (), "set": (1,), "int": (1,), "zero": (), "nan": (), "array": (1,),
+        "tuple": (1,), "dict": (1,), "grow": (1,),
+    }  # fmt: skip
+
+
+def test_a_batch_sent_pickled_arrives_exactly_as_one_sent_as_json(
+    make_worker: MakeWorker,
+) -> None:
+    """A batch's argument lists cross pickled (encode_calls); the learner must receive exactly
+    what the tagged JSON of a single call gives: types, dtypes, shapes, values, order."""
+    import enum
+
+    import numpy as np
+
+    from slamcourse.grading.testset import Calls
+    from slamcourse.sandbox.protocol import encode_calls
+
+    worker, loaded = make_worker(
+        """
+        import numpy as np
+        def describe(v):
+            if isinstance(v, np.ndarray):
+                return ["ndarray", v.dtype.str, list(v.shape), v.flags.writeable, v.tolist()]
+            if isinstance(v, (list, tuple)):
+                return [type(v).__name__, [describe(x) for x in v]]
+            if isinstance(v, dict):
+                return ["dict", [[describe(k), describe(x)] for k, x in v.items()]]
+            return [type(v).__name__, repr(v)]
+        def f(a, b):
+            return str([describe(a), describe(b)])
+        """
+    )
+    assert loaded.ok
+
+    class Level(enum.IntEnum):
+        HIGH = 3
+
+    cases = [
+        [(1, 2.5, "x"), {"k": [1, (2, 3)], (4, 5): None}],
+        [np.arange(6, dtype=np.int32).reshape(2, 3), np.linspace(0, 1, 5)[::2]],
+        [[np.float64(0.1), np.int64(7), np.bool_(True)], Level.HIGH],
+        [np.array([True, False]), [[-0.0, 1e300], [float("inf"), -1.5]]],
+        ["text with \n and \ud800", np.zeros((0, 3))],
+    ]
+    as_json = [worker.call(list(args)).value for args in cases]
+    batch = Calls(list(args) for args in cases)
+    batch.encoded = encode_calls(batch)
+    assert b'"pickled"' in batch.encoded
+    pickled = [r.value for r in worker.call_many(batch)]
+    assert pickled == as_json
+    assert all(r.mutated == () for r in worker.call_many(batch))
+
+
 def test_a_flooding_call_stops_the_batch(make_worker: MakeWorker) -> None:
     worker, loaded = make_worker(
         """

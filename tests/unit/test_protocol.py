@@ -3,9 +3,12 @@ data, at the speed a batch needs (one reply per call, thousands per submission).
 
 from __future__ import annotations
 
+import base64
 import json
 import math
+import struct
 
+import numpy as np
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
@@ -18,6 +21,17 @@ from slamcourse.sandbox.protocol import (
     decode_frame,
     value_of,
 )
+
+# -- float arrays sent as bytes -----------------------------------------------------------
+
+
+def f8(values: np.ndarray, shape: object = None) -> bytes:
+    raw = base64.b64encode(np.asarray(values, dtype="<f8").tobytes()).decode()
+    shape = list(np.shape(values)) if shape is None else shape
+    return json.dumps({"$f8": raw, "shape": shape}).encode()
+
+
+any_float = st.floats(allow_nan=True, allow_infinity=True)
 
 
 def reply(value_json: bytes) -> bytes:
@@ -62,3 +76,41 @@ def test_markers_nesting_and_constants() -> None:
     assert math.isnan(nan) and inf == -math.inf
     with pytest.raises(ProtocolViolation, match="unreadable"):
         decode_frame(b'{"id":3,"status":"ok","value":"\xff"}')
+
+
+@given(
+    st.lists(any_float, min_size=1, max_size=24).flatmap(
+        lambda xs: st.sampled_from([(len(xs),), (1, len(xs)), (len(xs), 1, 1)]).map(
+            lambda shape: np.array(xs).reshape(shape)
+        )
+    )
+)
+def test_a_float_array_sent_as_bytes_comes_back_bit_for_bit(array: np.ndarray) -> None:
+    """The nested lists ``tolist`` gives, with every float's bits (NaN, −0.0, infinities)."""
+    got = value_of(decode_frame(reply(b"[1, " + f8(array) + b"]")))[1]
+    flat = np.array(got, dtype=float).reshape(-1)
+    assert np.shape(got) == array.shape and type(np.asarray(got).tolist()) is list
+    bits = [struct.pack("<d", v) for v in flat]
+    assert bits == [struct.pack("<d", v) for v in array.reshape(-1).tolist()]
+
+
+def test_a_float_array_marker_is_read_strictly() -> None:
+    three = np.arange(3.0)
+    assert value_of(decode_frame(reply(f8(three)))) == [0.0, 1.0, 2.0]
+    assert value_of(decode_frame(reply(f8(np.zeros((0, 3)))))) == []
+    bad = [
+        f8(three, [4]),  # bytes that do not fill the shape
+        f8(three, [-3]),
+        f8(three, []),
+        f8(three, [3.0]),
+        f8(three, "3"),
+        f8(three, [1] * (MAX_DEPTH + 1)),
+        f8(np.zeros(0), [0, 10**30]),  # no bytes, a size numpy cannot hold
+        b'{"$f8": "AAAA!AAA", "shape": [0]}',  # not canonical base64
+        b'{"$f8": 3, "shape": [0]}',
+        b'{"$f8": "", "shape": [0], "x": 1}',
+        b'{"$f9": "", "shape": [0]}',
+    ]
+    for case in bad:
+        with pytest.raises(ProtocolViolation):
+            value_of(decode_frame(reply(case)))

@@ -9,6 +9,13 @@ Frames are single lines of JSON. Requests (parent → worker)::
 A ``check: false`` member turns off the worker's comparison of the arguments before and after
 each call (``mutated`` in a reply lists the positions of the arguments a call changed).
 
+A batch's ``calls`` request (:func:`encode_calls`) carries its argument lists after the line
+instead of in it: ``{"id": 3, "op": "calls", "pickled": N, "arrays": false}`` is followed by N
+bytes, the pickle of the argument lists, each argument already in the exact form the tags
+below would rebuild (:func:`plain_arg`). Pickle goes from the grader to the worker only, never
+back: the worker is the side at risk from what it unpickles, and it already runs the learner's
+code; the grader's reads stay JSON. ``arrays`` says whether any argument holds a numpy array.
+
 Inside ``args`` tuples, dicts and numpy arrays are tagged so that they arrive as such:
 ``{"$tuple": [...]}``, ``{"$dict": [[key, value], ...]}`` and
 ``{"$ndarray": [...], "$dtype": "float64"}``.
@@ -16,14 +23,18 @@ Inside ``args`` tuples, dicts and numpy arrays are tagged so that they arrive as
 Replies (worker → parent) are *untrusted*: :func:`decode_frame` accepts at most one JSON object
 of at most ``frame_bytes`` bytes, refuses huge integers and deep nesting, maps ``NaN`` and
 ``Infinity`` to floats (callers must reject non-finite values), and turns
-``{"unsupported": "<type>"}`` markers into :class:`Unsupported` values. Nothing is ever
-unpickled or evaluated.
+``{"unsupported": "<type>"}`` markers into :class:`Unsupported` values, and float arrays sent as
+bytes (``{"$f8": "<base64>", "shape": [...]}``) into the nested lists of their values. Nothing
+is ever unpickled or evaluated.
 """
 
 from __future__ import annotations
 
+import binascii
+import itertools
 import json
 import math
+import pickle
 import re
 import sys
 from collections.abc import Sequence
@@ -94,12 +105,45 @@ def encode_request(frame: dict[str, Any]) -> bytes:
 
 
 def encode_calls(calls: Sequence[Sequence[Any]]) -> bytes:
-    """The body of a ``calls`` request without its id (``"op":"calls","calls":[...]}`` and the
-    line end): :meth:`Worker.call_many` prefixes the id, so a body can be encoded once and sent
-    to many workers."""
-    args = [[encode_arg(a, 0) for a in one] for one in calls]
-    body = json.dumps({"op": "calls", "calls": args}, allow_nan=True, separators=(",", ":"))
-    return (body[1:] + "\n").encode()
+    """The body of a ``calls`` request without its id (``"op":"calls",...}``, the line end and
+    the pickled argument lists): :meth:`Worker.call_many` prefixes the id, so a body can be
+    encoded once and sent to many workers. Decoding a pickle costs the worker a fifth of what
+    JSON with tags costs (7.6 MB of arguments per complete submission of the bundled course)."""
+    found = [False]
+    args = [[plain_arg(a, 0, found) for a in one] for one in calls]
+    data = pickle.dumps(args, protocol=5)
+    head = json.dumps({"op": "calls", "pickled": len(data), "arrays": found[0]})
+    return (head[1:] + "\n").encode() + data
+
+
+def plain_arg(value: Any, depth: int = 0, arrays: list[bool] | None = None) -> Any:
+    """``value`` exactly as the worker rebuilds it from :func:`encode_arg`'s tags: lists,
+    tuples and dicts of the basic types (subclasses such as IntEnum become the basic type,
+    numpy scalars Python numbers), numpy arrays as fresh native arrays of the same dtype name.
+    ``arrays[0]`` is set when an array is met. Raises :class:`GraderError` as encode_arg."""
+    if depth > MAX_DEPTH:
+        raise GraderError("argument nested too deeply to send to the sandbox")
+    if value is None:
+        return None
+    if isinstance(value, bool | int | float | str):
+        encode_arg(value, depth)  # (the same limits)
+        return value if type(value) in (bool, int, float, str) else _plain(value)
+    if isinstance(value, tuple):
+        return tuple(plain_arg(v, depth + 1, arrays) for v in value)
+    if isinstance(value, list):
+        return [plain_arg(v, depth + 1, arrays) for v in value]
+    if isinstance(value, dict):
+        return {plain_arg(k, depth + 1, arrays): plain_arg(v, depth + 1, arrays)
+                for k, v in value.items()}  # fmt: skip
+    np = sys.modules.get("numpy")
+    if np is not None:
+        if isinstance(value, np.generic) and value.dtype.kind in "biuf":
+            return value.item()
+        if isinstance(value, np.ndarray) and value.dtype.kind in "biuf":
+            if arrays is not None:
+                arrays[0] = True
+            return np.array(value.tolist(), dtype=value.dtype.name)
+    raise GraderError(f"cannot send a {type(value).__name__} to the sandbox")
 
 
 def encode_arg(value: Any, depth: int = 0) -> Any:
@@ -194,14 +238,45 @@ def plain_value(value: Any, depth: int = 0) -> Any:
     if type(value) is list:
         if _LEAVES.issuperset(map(type, value)):  # a row of numbers: decoded fresh, kept
             return value
-        if depth < MAX_DEPTH and all(
-            type(v) is list and _LEAVES.issuperset(map(type, v)) for v in value
+        if (
+            depth < MAX_DEPTH
+            and set(map(type, value)) == {list}
+            and _LEAVES.issuperset(map(type, itertools.chain.from_iterable(value)))
         ):  # a matrix
             return value
         return [plain_value(v, depth + 1) for v in value]
     if type(value) is dict and len(value) == 1 and type(value.get("unsupported")) is str:
         return Unsupported(clean_text(value["unsupported"], 100))
+    if type(value) is dict and len(value) == 2 and "$f8" in value:
+        return float_array(value, depth)
     raise ProtocolViolation("return value contains a JSON object that is not a marker")
+
+
+def float_array(marker: dict[str, Any], depth: int = 0) -> list[Any]:
+    """The nested lists of a float array sent as bytes: ``{"$f8": "<base64 of float64 values,
+    little-endian, C order>", "shape": [d1, d2, ...]}``, checked strictly (canonical base64, a
+    shape of at least one non-negative size that the bytes fill exactly)."""
+    import numpy as np
+
+    data, shape = marker.get("$f8"), marker.get("shape")
+    if (
+        type(data) is not str
+        or type(shape) is not list
+        or not 1 <= len(shape) <= MAX_DEPTH - depth
+        or any(type(n) is not int or n < 0 for n in shape)
+    ):
+        raise ProtocolViolation("malformed float array")
+    try:
+        raw = binascii.a2b_base64(data, strict_mode=True)
+    except (binascii.Error, ValueError):
+        raise ProtocolViolation("float array with malformed base64") from None
+    if len(raw) != 8 * math.prod(shape):
+        raise ProtocolViolation("float array whose bytes do not fill its shape")
+    try:
+        values: list[Any] = np.frombuffer(raw, dtype="<f8").reshape(shape).tolist()
+    except (ValueError, OverflowError):  # e.g. an empty array of a dimension numpy cannot hold
+        raise ProtocolViolation("float array of an impossible shape") from None
+    return values
 
 
 def text_field(frame: dict[str, Any], key: str, limit: int = MAX_TEXT) -> str:

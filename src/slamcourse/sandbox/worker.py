@@ -17,8 +17,10 @@ Order of events:
    descriptors, then set every resource limit with soft = hard so nothing can raise them again;
 2. import numpy (if installed) and send a ``ready`` frame;
 3. answer requests read from ``req`` (one JSON object per line) with one JSON line each on
-   ``resp``: ``load`` (source text, file name, function name, expected parameters) and ``call``
-   (arguments). End of file on ``req`` means "exit now".
+   ``resp``: ``load`` (source text, file name, function name, expected parameters), ``call``
+   (arguments) and ``calls`` (many argument lists, one reply each; a batch's are pickled after
+   the line: ``"pickled": N`` bytes, from the parent only). End of file on ``req`` means "exit
+   now".
 
 Learner output is muted past ``out`` characters per stream (over the worker's whole life):
 ``sys.stdout`` and ``sys.stderr`` become writers that keep the first ``out`` characters and
@@ -28,7 +30,10 @@ writers, e.g. with ``os.write(1, ...)``, reaches the parent, which kills a worke
 
 Return values are converted to plain JSON data here, with exact type checks only (``type(x) is
 float``), so no method of a learner object is called while encoding; anything else becomes an
-``{"unsupported": "<type name>"}`` marker. Exceptions become text here, so no learner object ever
+``{"unsupported": "<type name>"}`` marker. A float array of at least ``BINARY_FLOATS`` entries is
+sent as its bytes, ``{"$f8": "<base64 of its float64 values, little-endian, C order>", "shape":
+[...]}``, which the parent turns back into the same nested lists: exact, and without writing
+and parsing every float as text. Exceptions become text here, so no learner object ever
 crosses the pipe. The parent re-validates everything it receives: this encoding is a courtesy,
 not a defence.
 """
@@ -89,10 +94,13 @@ _CFG = _parse_argv(sys.argv[1:])
 _ZYGOTE = "zygote" in _CFG
 _JOINED, _REFUSED = (0, []) if _ZYGOTE else _contain(_CFG)
 
+import binascii  # noqa: E402
 import builtins  # noqa: E402
 import contextlib  # noqa: E402
 import io  # noqa: E402
 import json  # noqa: E402
+import marshal  # noqa: E402
+import pickle  # noqa: E402
 import time  # noqa: E402
 import types  # noqa: E402
 from typing import Any  # noqa: E402
@@ -108,6 +116,9 @@ except Exception:  # numpy missing or broken: learners get an ImportError of the
 # Keep private references: learner code may monkeypatch the public names. This is robustness,
 # not security: the learner controls this whole process, and the parent trusts none of it.
 _write = os.write
+_b2a = binascii.b2a_base64
+_dumps, _loads = marshal.dumps, marshal.loads
+_unpickle = pickle.loads
 _ENCODER = json.JSONEncoder(allow_nan=True, separators=(",", ":"))
 _BUILTINS = builtins.__dict__
 _BUILTINS_SNAPSHOT = dict(_BUILTINS)
@@ -124,6 +135,7 @@ MAX_STR = 10_000  # characters of a returned string
 MAX_INT_BITS = 10_000  # bigger ints are not sent (JSON ints over 4300 digits are refused)
 MAX_ERROR = 2_000  # characters of an exception's text
 MAX_FRAMES = 20  # learner traceback frames kept (the innermost ones)
+BINARY_FLOATS = 16  # a float array of at least this many entries is sent as bytes, not text
 
 if _np is not None:
     _NDARRAY: type | None = _np.ndarray
@@ -249,6 +261,9 @@ def _encode(x: Any, depth: int, budget: list[int]) -> Any:
         budget[0] -= x.size
         if x.ndim > MAX_DEPTH - depth:
             return {"unsupported": "ndarray (too many dimensions)"}
+        if kind == "f" and x.size >= BINARY_FLOATS:  # its float64 bytes: exact, and no text
+            raw = x.astype("<f8").tobytes()  # (a float's decimal form costs ~20x more each way)
+            return {"$f8": _b2a(raw, newline=False).decode("ascii"), "shape": list(x.shape)}
         return x.tolist()
     return {"unsupported": _type_name(t)}
 
@@ -370,10 +385,11 @@ class Session:
         self.function = function
         return {"status": "ok"}
 
-    def call(self, args: list[Any], check: bool) -> dict[str, Any]:
+    def call(self, args: list[Any], check: bool, plain: bool = False) -> dict[str, Any]:
         """Call the function once. With ``check``, the arguments are copied first and compared
-        afterwards: ``mutated`` lists the positions of those the call changed in place."""
-        pristine = _copy(args) if check else None
+        afterwards: ``mutated`` lists the positions of those the call changed in place.
+        ``plain``: the arguments hold no numpy array (see :func:`_snapshot`)."""
+        pristine = [_snapshot(a, plain) for a in args] if check else None
         try:
             result = self.function(*args)
         except (SystemExit, KeyboardInterrupt):
@@ -388,12 +404,12 @@ class Session:
             except (_Oversize, RecursionError, MemoryError):
                 reply = {"status": "oversize", "size": None}
         if pristine is not None:
-            changed = [i for i in range(_len(pristine)) if not _unchanged(pristine[i], args[i])]
+            changed = [i for i in range(_len(pristine)) if not _same(pristine[i], args[i])]
             if changed:
                 reply["mutated"] = changed
         return reply
 
-    def call_many(self, req: dict[str, Any]) -> None:
+    def call_many(self, req: dict[str, Any], plain: bool = False) -> None:
         """Answer every call of ``req["calls"]`` with a frame of its own (ids ``req["id"]``,
         ``req["id"] + 1``, ...), each sent as soon as its call returns. A call that alone
         printed more than the output budget (``out=``) floods: its frame carries ``stop`` and
@@ -402,7 +418,7 @@ class Session:
         first = req.get("id")
         for index, args in enumerate(req["calls"]):
             before = _STDOUT.written + _STDERR.written
-            reply = self.call(args, check)
+            reply = self.call(args, check, plain)
             reply["id"] = first + index if type(first) is int else None
             flooded = _STDOUT.written + _STDERR.written - before > _BUDGET
             if flooded:
@@ -410,6 +426,48 @@ class Session:
             self.send(reply)
             if flooded:
                 return
+
+
+_NOTHING = (0, None)
+_IMMUTABLE = frozenset({str, int, float, bool, type(None)})
+
+
+def _snapshot(value: Any, plain: bool) -> tuple[int, Any]:
+    """What :func:`_same` compares an argument with after the call: nothing for a str, number,
+    bool or None (no call can change them in place); for plain data (``plain``: the request
+    built no numpy array) its ``marshal`` bytes, which record every type and every float's
+    bits at C speed, with no copy; else a deep copy (:func:`_copy`).
+
+    (marshal writes a numpy array as its raw bytes, without shape or dtype: hence only where
+    the request held none. A call that puts one in is still found: its bytes differ.)"""
+    if type(value) in _IMMUTABLE:
+        return _NOTHING
+    if plain:
+        try:
+            return (1, _dumps(value, 2))  # version 2: no back-references, bytes by value only
+        except BaseException:  # e.g. a list nested beyond marshal's depth
+            pass
+    return (2, _copy(value))
+
+
+def _same(snapshot: tuple[int, Any], after: Any) -> bool:
+    """Whether an argument is unchanged since :func:`_snapshot`, by :func:`_unchanged`'s rule
+    (identical bytes are unchanged; other bytes are decoded and compared by that rule, so
+    ``-0.0`` for ``0.0`` is no change, as in a copy)."""
+    tag, before = snapshot
+    if tag == 0:
+        return True
+    if tag == 1:
+        try:
+            if _dumps(after, 2) == before:
+                return True
+        except BaseException:  # the call put in something marshal cannot write
+            pass
+        try:
+            before = _loads(before)
+        except BaseException:  # pragma: no cover - our own bytes
+            return False
+    return _unchanged(before, after)
 
 
 def _copy(value: Any) -> Any:
@@ -505,14 +563,22 @@ def serve(req_fd: int, resp_fd: int) -> int:
         if not line:
             return 0
         req = decoder.decode(line.decode())
+        plain = b'"$ndarray"' not in line  # no array among the arguments: see _snapshot
+        size = req.get("pickled")
+        if type(size) is int:  # a batch's argument lists follow the line, pickled by the parent
+            body = requests.read(size)
+            if _len(body) != size:
+                return 0  # the parent went away mid-request
+            req["calls"] = _unpickle(body)
+            plain = req.get("arrays") is False
         op = req.get("op")
         if op == "load" and not loaded:
             loaded = True
             reply = session.load(req)
         elif op == "call" and session.function is not None:
-            reply = session.call(req["args"], req.get("check") is not False)
+            reply = session.call(req["args"], req.get("check") is not False, plain)
         elif op == "calls" and session.function is not None:
-            session.call_many(req)
+            session.call_many(req, plain)
             continue
         else:
             reply = {"status": "bad_request"}
