@@ -848,6 +848,25 @@ def test_large_bases_come_last_and_inadmissible_inputs_do_not_count() -> None:
     assert seen[0] == 1  # (tried first, refused)
 
 
+def test_a_base_whose_output_is_large_comes_last_too() -> None:
+    """``size`` weighs a base by what it costs (a test set adds the reference's output): a
+    count that makes the function compute and return n samples is as large as n values."""
+    t = ArgType("v", "vector")
+    bases = [{"v": [1.5, 2.5], "n": n} for n in (2000, 1500, 20, 30, 40)]
+    plain = [d.kwargs["n"] for d in boundary_inputs([t], bases) if d.label == "tuple (v)"]
+    assert plain == [2000, 1500][: domains.SPREAD]  # (equal inputs: the order given)
+
+    def with_output(base: dict[str, Any]) -> int:
+        return domains.input_size(base) + 3 * base["n"]
+
+    sized = [
+        d.kwargs["n"]
+        for d in boundary_inputs([t], bases, size=with_output)
+        if d.label == "tuple (v)"
+    ]
+    assert sized == [20, 30][: domains.SPREAD]
+
+
 def test_an_empty_sequence_in_another_form_is_a_last_resort() -> None:
     """``[]`` as a tuple or an array shows nothing a function could get wrong (an in-place
     change of an empty array changes nothing): such a class is derived from a base whose

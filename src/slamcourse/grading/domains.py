@@ -207,6 +207,7 @@ def boundary_inputs(
     *,
     limit: int = DEFAULT_LIMIT,
     admissible: Callable[[dict[str, Any]], bool] | None = None,
+    size: Callable[[dict[str, Any]], int] | None = None,
 ) -> list[Derived]:
     """The boundary inputs of ``types``, derived from ``bases`` (ordinary input dicts: the
     exercise's examples and drawn inputs).
@@ -217,7 +218,8 @@ def boundary_inputs(
     range's end (``lowest value``, ``highest value``) starts from the bases nearest to it.
     Bases more than :data:`LARGE_BASE` times the median base's size come after all others; a
     change of form (a tuple, an array) of an empty argument is used only where no other base
-    gives the class.
+    gives the class. ``size(base)``: how costly a base is (default :func:`input_size`; a test
+    set adds the size of the reference's output, which a count such as ``n`` samples sets).
     ``admissible(kwargs)``: whether a derived input lies in the exercise's domain; one that
     does not is skipped and the next base tried (without it, every changed input counts). A
     transform
@@ -239,7 +241,7 @@ def boundary_inputs(
             distinct.append((len(distinct), base, key))
     # a boundary class is about values and types, not size: large bases (a real data set among
     # small synthetic ones) are used last, so that the class is reached at a small input's cost
-    sizes = [_size(base) for _, base, _ in distinct]
+    sizes = [(size or input_size)(base) for _, base, _ in distinct]
     large_above = LARGE_BASE * sorted(sizes)[len(sizes) // 2] if sizes else 0
     large = {b[0] for b, size in zip(distinct, sizes, strict=True) if size > large_above}
     ordered = sorted(distinct, key=lambda b: (b[0] in large, -_score(b[1])))  # stable: ties kept
@@ -1519,15 +1521,15 @@ def _length(v: Any) -> int | None:
         return None
 
 
-def _size(v: Any) -> int:
+def input_size(v: Any) -> int:
     """How large an input is: its numbers, plus a text's length in eights (about one number
     per eight characters), containers summed."""
     if isinstance(v, str):
         return 1 + len(v) // 8
     if isinstance(v, dict):
-        return sum(_size(x) for x in v.values())
+        return sum(input_size(x) for x in v.values())
     if isinstance(v, list | tuple):
-        return sum(_size(x) for x in v)
+        return sum(input_size(x) for x in v)
     if _is_array(v):
         return max(1, int(v.size))
     return 1

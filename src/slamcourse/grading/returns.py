@@ -155,15 +155,18 @@ def compare(
     plain: bool = False,
     judge: Judge | None = None,
     kwargs: dict[str, Any] | None = None,
+    want_array: Any = None,
 ) -> Mismatch | None:
     """``None`` when ``got`` (plain data from the learner) matches ``want`` (the reference);
     ``plain``: ``want`` is plain data already (a test set's expected values are). With a
     ``judge``, ``got`` must only have ``spec``'s form (the reference's shape, finite numbers);
-    the judge, called with the input ``kwargs``, then decides instead of the tolerance."""
+    the judge, called with the input ``kwargs``, then decides instead of the tolerance.
+    ``want_array``: ``numeric_array(want)``, when the caller keeps it (a test set's case
+    converts its expected value once per batch, not once per learner)."""
     if not plain:
         want = to_plain(want)
     if judge is not None:
-        return _judged(spec, got, want, judge, kwargs or {})
+        return _judged(spec, got, want, judge, kwargs or {}, want_array)
     if isinstance(spec, tuple):
         if not isinstance(got, list):
             return Mismatch(f"expected {describe(spec)}, got {_what(got)}")
@@ -175,18 +178,23 @@ def compare(
                 return Mismatch(f"value {i + 1} of the tuple: {problem}")
         return None
     if spec == "array":
-        return _array(got, want, tol)
+        return _array(got, want, tol, want_array)
     problem = _scalar(spec, got, want, tol)
     return Mismatch(problem) if problem else None
 
 
 def _judged(
-    spec: tuple[str, ...] | str, got: Any, want: Any, judge: Judge, kwargs: dict[str, Any]
+    spec: tuple[str, ...] | str,
+    got: Any,
+    want: Any,
+    judge: Judge,
+    kwargs: dict[str, Any],
+    want_array: Any = None,
 ) -> Mismatch | None:
     from slamcourse.errors import GraderError
 
     if spec == "array":
-        form = _array(got, want, _ANY_VALUE)
+        form = _array(got, want, _ANY_VALUE, want_array)
     elif isinstance(spec, tuple):
         if not isinstance(got, list) or len(got) != len(spec):
             form = compare(spec, got, want, _ANY_VALUE)
@@ -221,9 +229,10 @@ def _copy_array(got: Any) -> Any:
     if not isinstance(got, list):
         return got
     numbers = {int, float}
-    if set(map(type, got)) <= numbers:
+    kinds = set(map(type, got))
+    if kinds <= numbers:
         return got[:]
-    if all(type(row) is list and set(map(type, row)) <= numbers for row in got):
+    if kinds == {list} and set(map(type, itertools.chain.from_iterable(got))) <= numbers:
         return [row[:] for row in got]
     return copy.deepcopy(got)
 
@@ -252,7 +261,10 @@ def _what(value: Any) -> str:
 def _number(value: Any) -> float | None:
     if isinstance(value, bool) or not isinstance(value, int | float):
         return None
-    return float(value)
+    try:
+        return float(value)
+    except OverflowError:  # a whole number beyond the floats (said as such by _scalar)
+        return math.inf
 
 
 def _scalar(kind: str, got: Any, want: Any, tol: Tolerance) -> str | None:
@@ -264,6 +276,8 @@ def _scalar(kind: str, got: Any, want: Any, tol: Tolerance) -> str | None:
     if number is None:
         return f"expected {describe(kind)}, got {_what(got)}"
     if not math.isfinite(number):
+        if isinstance(got, int):
+            return f"got a whole number of {got.bit_length()} bits, too large for a float"
         return f"got {show(number)}, which is not a finite number"
     target = float(want)
     if kind == "integer":
@@ -296,14 +310,51 @@ def _shape(value: Any) -> tuple[int, ...] | None:
     return (len(value), *inner) if inner is not None else None
 
 
-def _close_arrays(got: Any, want: Any, tol: Tolerance) -> bool:
+def numeric_array(value: Any) -> Any:
+    """``value`` (plain data) as a float ndarray when it is a non-empty rectangular list of
+    numbers (no booleans), else None: the form :func:`_close_arrays` compares."""
+    import numpy as np
+
+    if not isinstance(value, list) or not value:
+        return None
+    level: list[Any] = value
+    while True:
+        kinds = set(map(type, level))
+        if kinds == {list}:
+            level = list(itertools.chain.from_iterable(level))
+            continue
+        if not kinds <= {int, float}:
+            return None
+        break
+    try:
+        return np.array(value, dtype=float)
+    except (TypeError, ValueError, OverflowError):  # ragged
+        return None
+
+
+_SMALL = 16  # a 1-D value this short is compared in Python: numpy's call overhead dominates
+
+
+def _close_arrays(got: Any, want: Any, tol: Tolerance, want_array: Any = None) -> bool:
     """The common case at numpy speed: ``got`` is a rectangular array of finite numbers (no
     booleans) of ``want``'s shape within the tolerance. False means "look closely" (the walk
-    below finds the entry and says what is wrong), not necessarily a mismatch."""
+    below finds the entry and says what is wrong), not necessarily a mismatch.
+    ``want_array``: ``numeric_array(want)`` if the caller has it."""
     import numpy as np
 
     if not isinstance(got, list) or not isinstance(want, list):
         return False
+    if len(got) == len(want) <= _SMALL and {int, float}.issuperset(map(type, got)):
+        try:  # a short vector: the same rule, entry by entry (ints compared as floats)
+            return all(
+                type(w) in (int, float)
+                and math.isfinite(g)
+                and math.isfinite(w)
+                and abs(float(g) - float(w)) <= tol.atol + tol.rtol * abs(float(w))
+                for g, w in zip(got, want, strict=True)
+            )
+        except OverflowError:  # an int beyond floats: look closely
+            return False
     level: list[Any] = got  # booleans are not numbers: look at every entry's type, level by level
     while True:
         kinds = set(map(type, level))
@@ -315,7 +366,7 @@ def _close_arrays(got: Any, want: Any, tol: Tolerance) -> bool:
         break
     try:
         g = np.array(got)
-        w = np.array(want, dtype=float)
+        w = np.array(want, dtype=float) if want_array is None else want_array
     except (TypeError, ValueError):  # ragged, or not numbers
         return False
     if g.dtype.kind not in "if" or g.shape != w.shape:
@@ -326,8 +377,8 @@ def _close_arrays(got: Any, want: Any, tol: Tolerance) -> bool:
     return bool((np.abs(g - w) <= tol.atol + tol.rtol * np.abs(w)).all())
 
 
-def _array(got: Any, want: Any, tol: Tolerance) -> Mismatch | None:
-    if _close_arrays(got, want, tol):
+def _array(got: Any, want: Any, tol: Tolerance, want_array: Any = None) -> Mismatch | None:
+    if _close_arrays(got, want, tol, want_array):
         return None
     want_shape, got_shape = _shape(want), _shape(got)
     if got_shape is None:

@@ -22,6 +22,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
+from functools import lru_cache
 from typing import Any
 
 import numpy as np
@@ -120,15 +121,25 @@ class NoiseTest:
     @property
     def z(self) -> float:
         """Two-sided standard-normal threshold of one test."""
-        from scipy.stats import norm  # type: ignore[import-untyped]
-
-        return float(norm.isf(self.each / 2))
+        return _normal_isf(self.each / 2)
 
     def chi2_window(self, n: int) -> tuple[float, float]:
         """Two-sided window of a χ² with ``n`` degrees of freedom."""
-        from scipy.stats import chi2
+        return _chi2_window(self.each / 2, n)
 
-        return float(chi2.ppf(self.each / 2, n)), float(chi2.isf(self.each / 2, n))
+
+@lru_cache(maxsize=64)  # a batch judges thousands of samples with a handful of (α, n)
+def _normal_isf(p: float) -> float:
+    from scipy.stats import norm  # type: ignore[import-untyped]
+
+    return float(norm.isf(p))
+
+
+@lru_cache(maxsize=4096)
+def _chi2_window(p: float, n: int) -> tuple[float, float]:
+    from scipy.stats import chi2
+
+    return float(chi2.ppf(p, n)), float(chi2.isf(p, n))
 
 
 TESTS = 9
