@@ -363,3 +363,33 @@ def test_a_preloaded_zygote_leaves_learners_their_memory_headroom() -> None:
         after = second.call([]).value  # type: ignore[attr-defined]
     assert before == limits.memory_bytes
     assert limits.memory_bytes + (50 << 20) < after < limits.memory_bytes + (400 << 20)
+
+
+def test_a_zygote_started_ahead_serves_the_next_pool_only_and_is_preloaded() -> None:
+    """A batch starts the next learner's zygote while this one is graded: the next forking
+    pool takes it (its first worker finds scipy imported: it preloaded while nobody waited),
+    and only that pool: the one after starts its own."""
+    from slamcourse.grading import pool as pool_module
+
+    source = """
+        import os, sys
+        def f():
+            return [os.getppid(), "scipy.sparse.linalg" in sys.modules]
+        """
+    pool_module.start_zygote_ahead(require_isolation=False)
+    ahead = pool_module._AHEAD[False].result()  # started (and ready) in the background
+    first_pool = pool_module.WorkerPool(fork=True)
+    second_pool = pool_module.WorkerPool(fork=True)
+    try:
+        worker = first_pool.take(Limits())
+        assert first_pool._zygote is not None and first_pool._zygote.result() is ahead
+        assert worker.load(textwrap.dedent(source), "f.py", "f").ok
+        assert worker.call([]).value[1] is True  # preloaded before its first fork
+        worker.close()
+        other = second_pool.take(Limits())
+        assert second_pool._zygote is not None and second_pool._zygote.result() is not ahead
+        other.close()
+        assert False not in pool_module._AHEAD  # taken once, by the first pool
+    finally:
+        first_pool.close()
+        second_pool.close()

@@ -435,12 +435,14 @@ def _settle_heap() -> None:
 
 
 def grade_submission(
-    path: Path, options: GradeOptions, shared_path: str | None = None
+    path: Path, options: GradeOptions, shared_path: str | None = None, ahead: bool = False
 ) -> SubmissionGrade:
     """Grade one submission in a fresh engine and temporary home; never raises for anything
     the submission contains (its problems become ``status: error``). ``shared_path``: the
     batch's test sets (:func:`grade_all` builds them once); without it they are built here as
-    needed and kept for the next submission graded in this process."""
+    needed and kept for the next submission graded in this process. ``ahead``: another
+    submission may follow in this process: its sandbox zygote is started while this one is
+    graded (:func:`~slamcourse.grading.pool.start_zygote_ahead`)."""
     from slamcourse.course.locate import course_root
     from slamcourse.engine import Engine
     from slamcourse.settings import Settings
@@ -470,13 +472,24 @@ def grade_submission(
             fork_workers=True,
             course=_course(root),
         ) as engine:
+            if ahead:  # (after this submission took the zygote started for it)
+                from slamcourse.grading.pool import start_zygote_ahead
+
+                start_zygote_ahead(require_isolation=options.require_isolation)
             sub = _own_variants(sub, engine)
             warnings = [*sub.notes, *_check_claims(sub, engine, root, name)]
             given = {a.exercise: a for a in sub.manifest.answers}
+            graded: dict[str, ExerciseGrade] = {}
+            # text answers first: the sandbox's zygote starts meanwhile (results keep the
+            # course's order)
+            known = set(engine.course.exercise_ids)
+            for answer in sorted(given.values(), key=lambda a: a.file is not None):
+                if answer.exercise in known:
+                    graded[answer.exercise] = _grade_answer(engine, sub, answer, options, shared)
             grades: list[ExerciseGrade] = []
             for ex in engine.course.exercise_ids:
-                if ex in given:
-                    grades.append(_grade_answer(engine, sub, given[ex], options, shared))
+                if ex in graded:
+                    grades.append(graded[ex])
                 else:
                     spec = engine.exercise(ex)
                     grades.append(
@@ -570,7 +583,7 @@ def grade_all(
     total = len(paths)
     if jobs == 1 or total <= 1:
         for i, path in enumerate(paths):
-            results[i] = grade_submission(path, options)
+            results[i] = grade_submission(path, options, ahead=i + 1 < total)
             if on_done:
                 on_done(i + 1, total, results[i])  # type: ignore[arg-type]
         return [r for r in results if r is not None]
@@ -597,7 +610,7 @@ def grade_all(
             shared_path = scratch / "tests.pickle"
             shared.save(shared_path)
             futures = {
-                pool.submit(grade_submission, paths[i], options, str(shared_path)): i
+                pool.submit(grade_submission, paths[i], options, str(shared_path), True): i
                 for i in _largest_first(paths)
             }
             for done, future in enumerate(as_completed(futures), start=1):

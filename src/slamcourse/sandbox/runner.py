@@ -206,10 +206,12 @@ class _Resources:
         """SIGKILL the worker's process group, its cgroups (daemons too) and reap it."""
         proc = self.proc
         if isinstance(proc, _Forked):  # its pid is the zygote's to signal, not ours
-            proc.kill()
-            proc.wait(timeout=2.0)
-            if self.cgroups is not None:  # anything it started that left its process group
+            proc.kill()  # SIGKILL to its process group, sent by the time the zygote answers
+            if self.cgroups is not None:  # anything it started that left its process group;
+                proc.wait(timeout=2.0)  # (its cgroups can be removed once it has exited)
                 self.cgroups.kill()
+            # else the zygote reaps it: waiting for a dead process to unmap its memory (~2 ms)
+            # would only delay the next exercise
             return
         if proc is not None and proc.returncode is None:
             with contextlib.suppress(OSError):
@@ -947,18 +949,20 @@ class Zygote:
         require_isolation: bool = False,
         force: str | None = None,
         preload: Sequence[str] = (),
+        preload_first: bool = False,
     ) -> Zygote:
         """Start a zygote and wait until it is ready (raises :class:`SandboxError` if it cannot
         start). ``require_isolation`` and ``force`` as for :meth:`Worker.spawn`; ``limits``
         gives the start-up time and the size of the private ``/tmp``; ``preload``: modules the
         zygote imports once it has forked its first worker (e.g. ``scipy.sparse``), so later
-        workers do not import them again."""
+        workers do not import them again; with ``preload_first``, as soon as it is ready (a
+        zygote started ahead, which nobody waits for yet)."""
         limits = limits if limits is not None else Limits()
         zygote = cls(limits=limits, isolation=_isolation(require_isolation, force))
-        zygote._start(preload)
+        zygote._start(preload, preload_first)
         return zygote
 
-    def _start(self, preload: Sequence[str] = ()) -> None:
+    def _start(self, preload: Sequence[str] = (), preload_first: bool = False) -> None:
         res, limits = self._res, self._limits
         ours, theirs = socket.socketpair(socket.AF_UNIX, socket.SOCK_SEQPACKET)
         started = time.monotonic()
@@ -966,6 +970,8 @@ class Zygote:
             args = [f"zygote={theirs.fileno()}", f"frame={limits.frame_bytes}"]
             if preload:
                 args.append("preload=" + ",".join(preload))
+                if preload_first:
+                    args.append("preload_first=1")
             cmd, env, cwd = _command(self._isolation, limits, res, args, "zygote")
             res.proc = subprocess.Popen(
                 cmd,

@@ -674,6 +674,9 @@ def _zygote(control_fd: int) -> int:
     version = _np.__version__ if _np is not None else None
     answer({"status": "ready", "numpy": version, "pid": os.getpid()})
     preload = [name for name in _CFG.get("preload", "").split(",") if name]
+    if preload and _CFG.get("preload_first") == "1":  # started ahead: nobody waits for a fork
+        _preload(preload)
+        preload = []
     while True:
         try:
             data, fds, _flags, _addr = socket.recv_fds(sock, 1 << 16, 16)
@@ -782,6 +785,7 @@ def _fork_worker(
             _CFG.update({"req": str(req_r), "resp": str(resp_w)})
             _CFG.pop("zygote", None)
             _CFG.pop("preload", None)
+            _CFG.pop("preload_first", None)
             if _PRELOADED and "as" in _CFG:  # the preloaded modules are not the learner's
                 _CFG["as"] = str(int(_CFG["as"]) + _PRELOADED)
             sys.argv[1:] = [f"{k}={v}" for k, v in _CFG.items()]  # as a started worker's
