@@ -173,6 +173,7 @@ def test_a_batch_sent_pickled_arrives_exactly_as_one_sent_as_json(
     assert b'"pickled"' in batch.encoded
     pickled = [r.value for r in worker.call_many(batch)]
     assert pickled == as_json
+    assert "'<f8', [0, 3]" in as_json[4]  # an empty array keeps its other dimensions
     assert all(r.mutated == () for r in worker.call_many(batch))
 
 

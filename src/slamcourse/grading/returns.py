@@ -311,11 +311,12 @@ def _shape(value: Any) -> tuple[int, ...] | None:
 
 
 def numeric_array(value: Any) -> Any:
-    """``value`` (plain data) as a float ndarray when it is a non-empty rectangular list of
-    numbers (no booleans), else None: the form :func:`_close_arrays` compares."""
+    """``value`` (plain data) as a float ndarray when it is a rectangular list of numbers (no
+    booleans: every entry's type is looked at, level by level), else None: the form
+    :func:`_close_arrays` compares at numpy's speed."""
     import numpy as np
 
-    if not isinstance(value, list) or not value:
+    if not isinstance(value, list):
         return None
     level: list[Any] = value
     while True:
@@ -323,12 +324,12 @@ def numeric_array(value: Any) -> Any:
         if kinds == {list}:
             level = list(itertools.chain.from_iterable(level))
             continue
-        if not kinds <= {int, float}:
+        if not kinds <= {int, float}:  # booleans, ragged depths, anything else
             return None
         break
     try:
         return np.array(value, dtype=float)
-    except (TypeError, ValueError, OverflowError):  # ragged
+    except (TypeError, ValueError, OverflowError):  # ragged rows, an int beyond the floats
         return None
 
 
@@ -355,23 +356,10 @@ def _close_arrays(got: Any, want: Any, tol: Tolerance, want_array: Any = None) -
             )
         except OverflowError:  # an int beyond floats: look closely
             return False
-    level: list[Any] = got  # booleans are not numbers: look at every entry's type, level by level
-    while True:
-        kinds = set(map(type, level))
-        if kinds == {list}:
-            level = list(itertools.chain.from_iterable(level))
-            continue
-        if not kinds <= {int, float}:  # booleans, ragged rows, anything else: look closely
-            return False
-        break
-    try:
-        g = np.array(got)
-        w = np.array(want, dtype=float) if want_array is None else want_array
-    except (TypeError, ValueError):  # ragged, or not numbers
+    g = numeric_array(got)
+    w = numeric_array(want) if want_array is None else want_array
+    if g is None or w is None or g.shape != w.shape:  # look closely
         return False
-    if g.dtype.kind not in "if" or g.shape != w.shape:
-        return False
-    g = g.astype(float)
     if not np.isfinite(g).all() or not np.isfinite(w).all():
         return False
     return bool((np.abs(g - w) <= tol.atol + tol.rtol * np.abs(w)).all())

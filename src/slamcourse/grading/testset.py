@@ -229,56 +229,56 @@ def build(
     cases: list[Case] = []
     seen: set[str] = set()
 
-    judged: dict[str, tuple[bool, Any]] = {}  # a derived input's key: (in the domain, want)
+    outputs: dict[str, tuple[Any, Exception | None]] = {}  # an input's key: (output, error)
+
+    def output(kwargs: dict[str, Any], key: str) -> tuple[Any, Exception | None]:
+        """The reference's output on ``kwargs`` (plain data), or the exception it raised:
+        computed once per input, whether it is a base, a derived input or a case."""
+        if key not in outputs:
+            try:
+                outputs[key] = (to_plain(ref(**copy.deepcopy(kwargs))), None)
+            except Exception as exc:
+                outputs[key] = (None, exc)
+        return outputs[key]
+
+    judged: dict[str, bool] = {}  # a derived input's key: in the domain
 
     def admissible(kwargs: dict[str, Any]) -> bool:
         """Whether a derived input lies in the exercise's domain (``valid``, ``assume``, the
-        reference defined and finite there); the reference's output is kept for :func:`add`."""
+        reference defined and finite there)."""
         key = input_key(kwargs)
         if key not in judged:
             try:
                 inside = (valid is None or bool(valid(**copy.deepcopy(kwargs)))) and (
                     assumed is None or bool(assumed(**copy.deepcopy(kwargs)))
                 )
-                want = to_plain(ref(**copy.deepcopy(kwargs))) if inside else None
-            except Exception:  # outside the reference's domain: not an input the prompt allows
-                inside, want = False, None
-            judged[key] = (inside and _finite(want), want)
-        return judged[key][0]
-
-    outputs: dict[str, Any] = {}  # an example's or drawn base's key: the reference's output
+            except Exception:  # outside the domain the prompt states
+                inside = False
+            if inside:  # (the reference is asked only inside the domain)
+                want, error = output(kwargs, key)
+                inside = error is None and _finite(want)
+            judged[key] = inside
+        return judged[key]
 
     def cost(base: dict[str, Any]) -> int:
         """How costly a base is for every learner: its size and its output's (``n`` samples)."""
         from slamcourse.grading.domains import input_size
 
-        key = input_key(base)
-        if key not in outputs:
-            try:
-                outputs[key] = to_plain(ref(**copy.deepcopy(base)))
-            except Exception:  # reported by add, where the input joins the test set
-                outputs[key] = None
-        return input_size(base) + input_size(outputs[key])
+        return input_size(base) + input_size(output(base, input_key(base))[0])
 
     def add(kwargs: dict[str, Any], origin: str, *, derived: bool = False) -> bool:
         """Add one input; True if the test set holds it afterwards (added now or before)."""
         key = input_key(kwargs)
         if key in seen:
             return True
-        if derived:
-            if not admissible(kwargs):
-                return False
-            want = judged[key][1]
-        elif outputs.get(key) is not None:
-            want = outputs[key]
-        else:
-            try:
-                want = to_plain(ref(**copy.deepcopy(kwargs)))
-            except Exception as exc:
-                raise GraderError(
-                    f"the reference failed on {kwargs}: {type(exc).__name__}: {exc}; "
-                    "the exercise's 'arguments' must exclude undefined inputs"
-                ) from exc
+        if derived and not admissible(kwargs):
+            return False
+        want, error = output(kwargs, key)
+        if error is not None:
+            raise GraderError(
+                f"the reference failed on {kwargs}: {type(error).__name__}: {error}; "
+                "the exercise's 'arguments' must exclude undefined inputs"
+            ) from error
         seen.add(key)
         cases.append(Case(kwargs, want, origin))
         return True

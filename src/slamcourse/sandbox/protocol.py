@@ -12,13 +12,14 @@ each call (``mutated`` in a reply lists the positions of the arguments a call ch
 A batch's ``calls`` request (:func:`encode_calls`) carries its argument lists after the line
 instead of in it: ``{"id": 3, "op": "calls", "pickled": N, "arrays": false}`` is followed by N
 bytes, the pickle of the argument lists, each argument already in the exact form the tags
-below would rebuild (:func:`plain_arg`). Pickle goes from the grader to the worker only, never
+below rebuild (:func:`plain_arg`). Pickle goes from the grader to the worker only, never
 back: the worker is the side at risk from what it unpickles, and it already runs the learner's
 code; the grader's reads stay JSON. ``arrays`` says whether any argument holds a numpy array.
 
 Inside ``args`` tuples, dicts and numpy arrays are tagged so that they arrive as such:
 ``{"$tuple": [...]}``, ``{"$dict": [[key, value], ...]}`` and
-``{"$ndarray": [...], "$dtype": "float64"}``.
+``{"$ndarray": [...], "$dtype": "float64", "$shape": [...]}`` (the shape: an empty array keeps its
+other dimensions).
 
 Replies (worker → parent) are *untrusted*: :func:`decode_frame` accepts at most one JSON object
 of at most ``frame_bytes`` bytes, refuses huge integers and deep nesting, maps ``NaN`` and
@@ -117,37 +118,10 @@ def encode_calls(calls: Sequence[Sequence[Any]]) -> bytes:
 
 
 def plain_arg(value: Any, depth: int = 0, arrays: list[bool] | None = None) -> Any:
-    """``value`` exactly as the worker rebuilds it from :func:`encode_arg`'s tags: lists,
-    tuples and dicts of the basic types (subclasses such as IntEnum become the basic type,
-    numpy scalars Python numbers), numpy arrays as fresh native arrays of the same dtype name.
-    ``arrays[0]`` is set when an array is met. Raises :class:`GraderError` as encode_arg."""
-    if depth > MAX_DEPTH:
-        raise GraderError("argument nested too deeply to send to the sandbox")
-    if value is None:
-        return None
-    if isinstance(value, bool | int | float | str):
-        encode_arg(value, depth)  # (the same limits)
-        return value if type(value) in (bool, int, float, str) else _plain(value)
-    if isinstance(value, tuple):
-        return tuple(plain_arg(v, depth + 1, arrays) for v in value)
-    if isinstance(value, list):
-        return [plain_arg(v, depth + 1, arrays) for v in value]
-    if isinstance(value, dict):
-        return {plain_arg(k, depth + 1, arrays): plain_arg(v, depth + 1, arrays)
-                for k, v in value.items()}  # fmt: skip
-    np = sys.modules.get("numpy")
-    if np is not None:
-        if isinstance(value, np.generic) and value.dtype.kind in "biuf":
-            return value.item()
-        if isinstance(value, np.ndarray) and value.dtype.kind in "biuf":
-            if arrays is not None:
-                arrays[0] = True
-            return np.array(value.tolist(), dtype=value.dtype.name)
-    raise GraderError(f"cannot send a {type(value).__name__} to the sandbox")
-
-
-def encode_arg(value: Any, depth: int = 0) -> Any:
-    """Plain data for one argument; raises :class:`GraderError` for anything else.
+    """``value`` as the worker receives it: lists, tuples and dicts of the basic types
+    (subclasses such as IntEnum become the basic type, numpy scalars Python numbers), numpy
+    arrays as fresh native C-ordered arrays of the same dtype name; raises
+    :class:`GraderError` for anything else. ``arrays[0]`` is set when an array is met.
 
     Containers are recognised by type, whatever is imported; numpy is consulted only for a
     value that no other rule matched, and only if numpy is already loaded (a numpy value
@@ -163,22 +137,41 @@ def encode_arg(value: Any, depth: int = 0) -> Any:
             raise GraderError("integer argument too large to send to the sandbox")
         return value if type(value) in (bool, int, float, str) else _plain(value)
     if isinstance(value, tuple):
-        return {"$tuple": [encode_arg(v, depth + 1) for v in value]}
+        return tuple(plain_arg(v, depth + 1, arrays) for v in value)
     if isinstance(value, list):
-        return [encode_arg(v, depth + 1) for v in value]
+        return [plain_arg(v, depth + 1, arrays) for v in value]
     if isinstance(value, dict):
-        return {
-            "$dict": [
-                [encode_arg(k, depth + 1), encode_arg(v, depth + 1)] for k, v in value.items()
-            ]
-        }
+        return {plain_arg(k, depth + 1, arrays): plain_arg(v, depth + 1, arrays)
+                for k, v in value.items()}  # fmt: skip
     np = sys.modules.get("numpy")
     if np is not None:
         if isinstance(value, np.generic) and value.dtype.kind in "biuf":
             return value.item()
         if isinstance(value, np.ndarray) and value.dtype.kind in "biuf":
-            return {"$ndarray": value.tolist(), "$dtype": value.dtype.name}
+            if arrays is not None:
+                arrays[0] = True
+            return value.astype(value.dtype.name, order="C")  # a copy, native byte order
     raise GraderError(f"cannot send a {type(value).__name__} to the sandbox")
+
+
+def encode_arg(value: Any, depth: int = 0) -> Any:
+    """One argument as JSON data (:func:`plain_arg`, then tuples, dicts and arrays tagged as
+    the module docstring says); raises :class:`GraderError` as plain_arg."""
+    return _tagged(plain_arg(value, depth))
+
+
+def _tagged(value: Any) -> Any:
+    """:func:`plain_arg`'s output with its tuples, dicts and arrays tagged for JSON."""
+    kind = type(value)
+    if kind is tuple:
+        return {"$tuple": [_tagged(v) for v in value]}
+    if kind is list:
+        return [_tagged(v) for v in value]
+    if kind is dict:
+        return {"$dict": [[_tagged(k), _tagged(v)] for k, v in value.items()]}
+    if value is None or kind in (bool, int, float, str):
+        return value
+    return {"$ndarray": value.tolist(), "$dtype": value.dtype.name, "$shape": list(value.shape)}
 
 
 def _plain(value: bool | int | float | str) -> bool | int | float | str:

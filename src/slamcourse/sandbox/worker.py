@@ -272,8 +272,8 @@ def decode_arg(obj: dict[str, Any]) -> Any:
     """``json.loads`` object hook: rebuild the tagged tuples, dicts and arrays the parent sent.
 
     Inside ``args`` every JSON object is a tag (``{"$tuple": [...]}``, ``{"$dict": [[k, v],
-    ...]}``, ``{"$ndarray": [...], "$dtype": "float64"}``); untagged objects are the request
-    envelope itself.
+    ...]}``, ``{"$ndarray": [...], "$dtype": "float64", "$shape": [...]}``); untagged objects
+    are the request envelope itself.
     """
     if "$tuple" in obj:
         return tuple(obj["$tuple"])
@@ -282,7 +282,8 @@ def decode_arg(obj: dict[str, Any]) -> Any:
     if "$ndarray" in obj:
         if _np is None:
             return None  # the learner's own numpy use fails the same way
-        return _ARRAY_FROM(obj["$ndarray"], dtype=obj["$dtype"])
+        array = _ARRAY_FROM(obj["$ndarray"], dtype=obj["$dtype"])
+        return array.reshape(obj["$shape"]) if "$shape" in obj else array  # ([] of 0 x 3)
     return obj
 
 
