@@ -85,10 +85,14 @@ def test_a_call_that_changes_an_argument_is_reported(make_worker: MakeWorker) ->
 
 
 @pytest.mark.parametrize("with_array", [False, True], ids=["plain-data", "array-in-request"])
-def test_every_kind_of_in_place_change_is_found(make_worker: MakeWorker, with_array: bool) -> None:
-    """Plain arguments are compared by their marshal bytes, a request with an array by deep
-    copies: both find the same changes by the same rule (types exact, floats by value, NaN
-    equal to NaN, -0.0 equal to 0.0)."""
+@pytest.mark.parametrize("batched", [True, False], ids=["pickled-batch", "single-calls"])
+def test_every_kind_of_in_place_change_is_found(
+    make_worker: MakeWorker, with_array: bool, batched: bool
+) -> None:
+    """A batch's arguments are compared with the pickle each call's arguments were read from
+    (pickled again: same bytes, unchanged; else one by one), a single call's with deep copies:
+    both find the same changes by the same rule (types exact, floats by value, NaN equal to
+    NaN, -0.0 equal to 0.0), whether or not the request holds an array."""
     worker, loaded = make_worker(
         """
         import numpy as np
@@ -109,6 +113,10 @@ def test_every_kind_of_in_place_change_is_found(make_worker: MakeWorker, with_ar
                 x[3]["b"] = x[3].pop("a")    # keys reordered
             elif how == "grow":
                 x.append(None)
+            elif how == "extra" and isinstance(extra, np.ndarray):
+                extra[1] = 7.0               # an array changed in place
+            elif how == "same-value" and isinstance(extra, np.ndarray):
+                extra[0] = 0.0               # written, but to the value it had
             return 0
         """
     )
@@ -119,12 +127,15 @@ def test_every_kind_of_in_place_change_is_found(make_worker: MakeWorker, with_ar
         return [[0.0, 1.5], float("nan"), ([1],), {"a": 1, "b": 2}]
 
     extra = np.zeros(2) if with_array else "no array"
-    hows = ["none", "set", "int", "zero", "nan", "array", "tuple", "dict", "grow"]
-    results = worker.call_many([[how, argument(), extra] for how in hows])
+    hows = ["none", "set", "int", "zero", "nan", "array", "tuple", "dict", "grow", "extra",
+            "same-value"]  # fmt: skip
+    calls = [[how, argument(), extra] for how in hows]
+    results = worker.call_many(calls) if batched else [worker.call(args) for args in calls]
     changed = {how: r.mutated for how, r in zip(hows, results, strict=True)}
     assert changed == {
         "none": (), "set": (1,), "int": (1,), "zero": (), "nan": (), "array": (1,),
-        "tuple": (1,), "dict": (1,), "grow": (1,),
+        "tuple": (1,), "dict": (1,), "grow": (1,), "extra": (2,) if with_array else (),
+        "same-value": (),
     }  # fmt: skip
 
 

@@ -19,6 +19,7 @@ from slamcourse.sandbox.protocol import (
     ProtocolViolation,
     Unsupported,
     decode_frame,
+    encode_calls,
     value_of,
 )
 
@@ -114,3 +115,38 @@ def test_a_float_array_marker_is_read_strictly() -> None:
     for case in bad:
         with pytest.raises(ProtocolViolation):
             value_of(decode_frame(reply(case)))
+
+
+arguments = st.recursive(
+    st.one_of(
+        leaves,
+        st.floats(allow_nan=True, allow_infinity=True),
+        st.sampled_from(["θ", "", "edge"]),
+        st.lists(st.floats(-1e6, 1e6), max_size=8).map(np.array),
+        st.lists(st.integers(-5, 5), max_size=6).map(lambda xs: np.array(xs, dtype=np.int32)),
+        st.just(np.zeros((0, 3))),
+    ),
+    lambda inner: st.one_of(
+        st.lists(inner, max_size=4),
+        st.lists(inner, max_size=4).map(tuple),
+        st.dictionaries(st.text(max_size=3), inner, max_size=3),
+    ),
+    max_leaves=30,
+)
+
+
+@given(st.lists(st.lists(arguments, min_size=1, max_size=3), min_size=1, max_size=4))
+def test_a_calls_argument_pickle_is_its_own_record(calls: list) -> None:
+    """The worker decides "unchanged" by pickling a call's arguments again and comparing the
+    bytes with the pickle it read them from (encode_calls): for every argument the grader can
+    send, untouched arguments must give the very same bytes, or every call would fall back to
+    the slow comparison (the verdict would still be right, only slower)."""
+    import pickle
+
+    body = encode_calls(calls)
+    head, data = body.split(b"\n", 1)
+    assert json.loads(b"{" + head) == {"op": "calls", "pickled": len(data)}
+    records = pickle.loads(data)
+    assert len(records) == len(calls)
+    for record in records:
+        assert pickle.dumps(pickle.loads(record), protocol=5) == record

@@ -10,11 +10,13 @@ A ``check: false`` member turns off the worker's comparison of the arguments bef
 each call (``mutated`` in a reply lists the positions of the arguments a call changed).
 
 A batch's ``calls`` request (:func:`encode_calls`) carries its argument lists after the line
-instead of in it: ``{"id": 3, "op": "calls", "pickled": N, "arrays": false}`` is followed by N
-bytes, the pickle of the argument lists, each argument already in the exact form the tags
-below rebuild (:func:`plain_arg`). Pickle goes from the grader to the worker only, never
-back: the worker is the side at risk from what it unpickles, and it already runs the learner's
-code; the grader's reads stay JSON. ``arrays`` says whether any argument holds a numpy array.
+instead of in it: ``{"id": 3, "op": "calls", "pickled": N}`` is followed by N bytes, the pickle
+of a list holding each call's argument list pickled on its own, each argument already in the
+exact form the tags below rebuild (:func:`plain_arg`). Those per-call bytes are also the
+worker's record for the in-place check: arguments that pickle to the same bytes after the call
+are unchanged. Pickle goes from the grader to the worker only, never back: the worker is the
+side at risk from what it unpickles, and it already runs the learner's code; the grader's
+reads stay JSON.
 
 Inside ``args`` tuples, dicts and numpy arrays are tagged so that they arrive as such:
 ``{"$tuple": [...]}``, ``{"$dict": [[key, value], ...]}`` and
@@ -108,20 +110,22 @@ def encode_request(frame: dict[str, Any]) -> bytes:
 def encode_calls(calls: Sequence[Sequence[Any]]) -> bytes:
     """The body of a ``calls`` request without its id (``"op":"calls",...}``, the line end and
     the pickled argument lists): :meth:`Worker.call_many` prefixes the id, so a body can be
-    encoded once and sent to many workers. Decoding a pickle costs the worker a fifth of what
-    JSON with tags costs (7.6 MB of arguments per complete submission of the bundled course)."""
-    found = [False]
-    args = [[plain_arg(a, 0, found) for a in one] for one in calls]
-    data = pickle.dumps(args, protocol=5)
-    head = json.dumps({"op": "calls", "pickled": len(data), "arrays": found[0]})
+    encoded once and sent to many workers. Each call's argument list is pickled on its own:
+    the worker reads a call's arguments from its pickle and, after the call, pickles them again
+    to see whether the call changed them (same bytes: unchanged), so no copy is made before
+    each call. Decoding a pickle costs the worker a fifth of what JSON with tags costs."""
+    data = pickle.dumps(
+        [pickle.dumps([plain_arg(a, 0) for a in one], protocol=5) for one in calls], protocol=5
+    )
+    head = json.dumps({"op": "calls", "pickled": len(data)})
     return (head[1:] + "\n").encode() + data
 
 
-def plain_arg(value: Any, depth: int = 0, arrays: list[bool] | None = None) -> Any:
+def plain_arg(value: Any, depth: int = 0) -> Any:
     """``value`` as the worker receives it: lists, tuples and dicts of the basic types
     (subclasses such as IntEnum become the basic type, numpy scalars Python numbers), numpy
     arrays as fresh native C-ordered arrays of the same dtype name; raises
-    :class:`GraderError` for anything else. ``arrays[0]`` is set when an array is met.
+    :class:`GraderError` for anything else.
 
     Containers are recognised by type, whatever is imported; numpy is consulted only for a
     value that no other rule matched, and only if numpy is already loaded (a numpy value
@@ -137,19 +141,17 @@ def plain_arg(value: Any, depth: int = 0, arrays: list[bool] | None = None) -> A
             raise GraderError("integer argument too large to send to the sandbox")
         return value if type(value) in (bool, int, float, str) else _plain(value)
     if isinstance(value, tuple):
-        return tuple(plain_arg(v, depth + 1, arrays) for v in value)
+        return tuple(plain_arg(v, depth + 1) for v in value)
     if isinstance(value, list):
-        return [plain_arg(v, depth + 1, arrays) for v in value]
+        return [plain_arg(v, depth + 1) for v in value]
     if isinstance(value, dict):
-        return {plain_arg(k, depth + 1, arrays): plain_arg(v, depth + 1, arrays)
+        return {plain_arg(k, depth + 1): plain_arg(v, depth + 1)
                 for k, v in value.items()}  # fmt: skip
     np = sys.modules.get("numpy")
     if np is not None:
         if isinstance(value, np.generic) and value.dtype.kind in "biuf":
             return value.item()
         if isinstance(value, np.ndarray) and value.dtype.kind in "biuf":
-            if arrays is not None:
-                arrays[0] = True
             return value.astype(value.dtype.name, order="C")  # a copy, native byte order
     raise GraderError(f"cannot send a {type(value).__name__} to the sandbox")
 
@@ -191,14 +193,22 @@ def _parse_int(text: str) -> int:
     return int(text)
 
 
+_DECODER = json.JSONDecoder(parse_constant=_CONSTANTS.__getitem__)
+_CAREFUL_DECODER = json.JSONDecoder(parse_constant=_CONSTANTS.__getitem__, parse_int=_parse_int)
+"""Made once: ``json.loads`` with keyword arguments builds a new decoder for every reply (and
+``raw_decode`` skips its two whitespace regular expressions)."""
+
+
 def decode_frame(line: bytes) -> dict[str, Any]:
     """Parse one reply line into a dict with an integer ``id`` and a string ``status``."""
     try:
-        text = line.decode("utf-8")
+        text = line.decode("utf-8").strip(" \t\n\r")  # (JSON's whitespace, as json.loads)
         if len(line) <= MAX_INT_DIGITS or _LONG_RUN not in line.translate(_DIGITS_AS_D):
-            obj = json.loads(text, parse_constant=_CONSTANTS.__getitem__)
+            obj, end = _DECODER.raw_decode(text)
         else:
-            obj = json.loads(text, parse_constant=_CONSTANTS.__getitem__, parse_int=_parse_int)
+            obj, end = _CAREFUL_DECODER.raw_decode(text)
+        if end != len(text):
+            raise ValueError("extra data after the reply")
     except ProtocolViolation:
         raise
     except (ValueError, RecursionError, KeyError, MemoryError) as exc:

@@ -99,7 +99,6 @@ import builtins  # noqa: E402
 import contextlib  # noqa: E402
 import io  # noqa: E402
 import json  # noqa: E402
-import marshal  # noqa: E402
 import pickle  # noqa: E402
 import time  # noqa: E402
 import types  # noqa: E402
@@ -117,8 +116,7 @@ except Exception:  # numpy missing or broken: learners get an ImportError of the
 # not security: the learner controls this whole process, and the parent trusts none of it.
 _write = os.write
 _b2a = binascii.b2a_base64
-_dumps, _loads = marshal.dumps, marshal.loads
-_unpickle = pickle.loads
+_pickle, _unpickle = pickle.dumps, pickle.loads
 _ENCODER = json.JSONEncoder(allow_nan=True, separators=(",", ":"))
 _BUILTINS = builtins.__dict__
 _BUILTINS_SNAPSHOT = dict(_BUILTINS)
@@ -208,8 +206,10 @@ class _MutedStream(io.TextIOBase):
 def _restore_builtins() -> None:
     """Undo patches of ``builtins`` (e.g. ``builtins.len = ...``) before the worker's own code
     runs again; names the learner added are kept."""
-    with contextlib.suppress(BaseException):
+    try:  # noqa: SIM105 (not contextlib.suppress: this runs twice per call)
         _BUILTINS.update(_BUILTINS_SNAPSHOT)
+    except BaseException:
+        pass
 
 
 class _Oversize(Exception):
@@ -386,11 +386,12 @@ class Session:
         self.function = function
         return {"status": "ok"}
 
-    def call(self, args: list[Any], check: bool, plain: bool = False) -> dict[str, Any]:
-        """Call the function once. With ``check``, the arguments are copied first and compared
-        afterwards: ``mutated`` lists the positions of those the call changed in place.
-        ``plain``: the arguments hold no numpy array (see :func:`_snapshot`)."""
-        pristine = [_snapshot(a, plain) for a in args] if check else None
+    def call(self, args: list[Any], check: bool, record: bytes | None = None) -> dict[str, Any]:
+        """Call the function once. With ``check``, the arguments are compared afterwards with
+        what they were: ``mutated`` lists the positions of those the call changed in place.
+        ``record``: the pickle the arguments were read from (a batch sends one per call), which
+        is then the record to compare with; without it they are deep-copied first."""
+        pristine = [_copy(a) for a in args] if check and record is None else None
         try:
             result = self.function(*args)
         except (SystemExit, KeyboardInterrupt):
@@ -404,22 +405,26 @@ class Session:
                 reply = {"status": "ok", "value": encode(result)}
             except (_Oversize, RecursionError, MemoryError):
                 reply = {"status": "oversize", "size": None}
-        if pristine is not None:
-            changed = [i for i in range(_len(pristine)) if not _same(pristine[i], args[i])]
+        if check:
+            changed = _changed(args, pristine, record)
             if changed:
                 reply["mutated"] = changed
         return reply
 
-    def call_many(self, req: dict[str, Any], plain: bool = False) -> None:
+    def call_many(self, req: dict[str, Any]) -> None:
         """Answer every call of ``req["calls"]`` with a frame of its own (ids ``req["id"]``,
         ``req["id"] + 1``, ...), each sent as soon as its call returns. A call that alone
         printed more than the output budget (``out=``) floods: its frame carries ``stop`` and
-        the batch ends there, so the flood is not repeated on every input."""
+        the batch ends there, so the flood is not repeated on every input. The calls are
+        argument lists, or (a pickled batch) the pickle of each call's argument list."""
         check = req.get("check") is not False
         first = req.get("id")
-        for index, args in enumerate(req["calls"]):
+        for index, call in enumerate(req["calls"]):
             before = _STDOUT.written + _STDERR.written
-            reply = self.call(args, check, plain)
+            if type(call) is bytes:
+                reply = self.call(_unpickle(call), check, call)
+            else:
+                reply = self.call(call, check)
             reply["id"] = first + index if type(first) is int else None
             flooded = _STDOUT.written + _STDERR.written - before > _BUDGET
             if flooded:
@@ -429,46 +434,21 @@ class Session:
                 return
 
 
-_NOTHING = (0, None)
-_IMMUTABLE = frozenset({str, int, float, bool, type(None)})
-
-
-def _snapshot(value: Any, plain: bool) -> tuple[int, Any]:
-    """What :func:`_same` compares an argument with after the call: nothing for a str, number,
-    bool or None (no call can change them in place); for plain data (``plain``: the request
-    built no numpy array) its ``marshal`` bytes, which record every type and every float's
-    bits at C speed, with no copy; else a deep copy (:func:`_copy`).
-
-    (marshal writes a numpy array as its raw bytes, without shape or dtype: hence only where
-    the request held none. A call that puts one in is still found: its bytes differ.)"""
-    if type(value) in _IMMUTABLE:
-        return _NOTHING
-    if plain:
+def _changed(args: list[Any], pristine: list[Any] | None, record: bytes | None) -> list[int]:
+    """The positions of the arguments a call changed in place, by :func:`_unchanged`'s rule.
+    With ``record`` (the pickle they were read from), arguments that pickle to the same bytes
+    again are unchanged (one C-speed pickling, no copy made before the call: the same
+    structure pickles to the same bytes); otherwise they are compared one by one with the
+    record read again (``-0.0`` for ``0.0`` is no change, as with a copy)."""
+    if record is not None:
         try:
-            return (1, _dumps(value, 2))  # version 2: no back-references, bytes by value only
-        except BaseException:  # e.g. a list nested beyond marshal's depth
+            if _pickle(args, 5) == record:
+                return []
+        except BaseException:  # the call put in something that cannot be pickled
             pass
-    return (2, _copy(value))
-
-
-def _same(snapshot: tuple[int, Any], after: Any) -> bool:
-    """Whether an argument is unchanged since :func:`_snapshot`, by :func:`_unchanged`'s rule
-    (identical bytes are unchanged; other bytes are decoded and compared by that rule, so
-    ``-0.0`` for ``0.0`` is no change, as in a copy)."""
-    tag, before = snapshot
-    if tag == 0:
-        return True
-    if tag == 1:
-        try:
-            if _dumps(after, 2) == before:
-                return True
-        except BaseException:  # the call put in something marshal cannot write
-            pass
-        try:
-            before = _loads(before)
-        except BaseException:  # pragma: no cover - our own bytes
-            return False
-    return _unchanged(before, after)
+        pristine = _unpickle(record)
+    assert pristine is not None
+    return [i for i in range(_len(pristine)) if not _unchanged(pristine[i], args[i])]
 
 
 def _copy(value: Any) -> Any:
@@ -537,9 +517,16 @@ def _arity_problem(function: Any, count: int) -> list[str] | None:
 
 
 def _flush_learner_output() -> None:
-    for stream in (sys.stdout, sys.stderr, _STDOUT, _STDERR):
-        with contextlib.suppress(BaseException):
+    """Flush the learner's streams (sys.stdout and sys.stderr, which the learner may have
+    replaced, and the worker's own), each once."""
+    out: Any = getattr(sys, "stdout", None)
+    err: Any = getattr(sys, "stderr", None)
+    ours = out is _STDOUT and err is _STDERR
+    for stream in (_STDOUT, _STDERR) if ours else (out, err, _STDOUT, _STDERR):
+        try:  # noqa: SIM105 (runs on every reply: a try costs less than suppress)
             stream.flush()
+        except BaseException:
+            pass
 
 
 _BUDGET = int(_CFG.get("out") or 1 << 20)
@@ -564,22 +551,20 @@ def serve(req_fd: int, resp_fd: int) -> int:
         if not line:
             return 0
         req = decoder.decode(line.decode())
-        plain = b'"$ndarray"' not in line  # no array among the arguments: see _snapshot
         size = req.get("pickled")
-        if type(size) is int:  # a batch's argument lists follow the line, pickled by the parent
+        if type(size) is int:  # a batch: one pickle per call's argument list follows the line
             body = requests.read(size)
             if _len(body) != size:
                 return 0  # the parent went away mid-request
             req["calls"] = _unpickle(body)
-            plain = req.get("arrays") is False
         op = req.get("op")
         if op == "load" and not loaded:
             loaded = True
             reply = session.load(req)
         elif op == "call" and session.function is not None:
-            reply = session.call(req["args"], req.get("check") is not False, plain)
+            reply = session.call(req["args"], req.get("check") is not False)
         elif op == "calls" and session.function is not None:
-            session.call_many(req, plain)
+            session.call_many(req)
             continue
         else:
             reply = {"status": "bad_request"}
