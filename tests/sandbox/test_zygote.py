@@ -405,3 +405,35 @@ def test_a_zygote_started_ahead_serves_the_next_pool_only_and_is_preloaded() -> 
     finally:
         first_pool.close()
         second_pool.close()
+
+
+def test_closed_workers_cgroups_are_swept_and_removed_by_the_time_the_zygote_closes(
+    zygote: Zygote,
+) -> None:
+    """A closed forked worker is killed at once; its exit is awaited and its cgroups swept
+    and removed in the background (the next exercise does not wait for it), and all of that
+    is done when the zygote closes."""
+    import threading
+
+    from slamcourse.sandbox import runner
+
+    if zygote.isolation.cgroups is None:
+        pytest.skip("no delegated cgroups here: a forked worker has none to remove")
+
+    def run_one() -> list:
+        worker = load(zygote, "def f(x):\n    return x\n")
+        cgroups = worker._res.cgroups  # type: ignore[attr-defined]
+        assert cgroups is not None and cgroups.dirs
+        assert worker.call([1]).value == 1  # type: ignore[attr-defined]
+        worker.close()  # type: ignore[attr-defined]
+        return list(cgroups.dirs)
+
+    run_one()  # (starts the background sweeper)
+    assert runner._REAPER is not None
+    gate = threading.Event()
+    runner._REAPER.submit(gate.wait, 10.0)  # the sweeps queue behind this
+    dirs = run_one() + run_one()
+    assert all(d.exists() for d in dirs)  # closing did not wait for the sweep
+    threading.Timer(0.3, gate.set).start()
+    zygote.close()
+    assert [d for d in dirs if d.exists()] == []

@@ -33,6 +33,7 @@ import threading
 import time
 import weakref
 from collections.abc import Sequence
+from concurrent.futures import Future, ThreadPoolExecutor
 from dataclasses import dataclass, replace
 from types import TracebackType
 from typing import Any, Literal
@@ -208,11 +209,11 @@ class _Resources:
         proc = self.proc
         if isinstance(proc, _Forked):  # its pid is the zygote's to signal, not ours
             proc.kill()  # SIGKILL to its process group, sent by the time the zygote answers
-            if self.cgroups is not None:  # anything it started that left its process group;
-                proc.wait(timeout=2.0)  # (its cgroups can be removed once it has exited)
-                self.cgroups.kill()
-            # else the zygote reaps it: waiting for a dead process to unmap its memory (~2 ms)
-            # would only delay the next exercise
+            cgroups, self.cgroups = self.cgroups, None
+            if cgroups is not None:  # anything it started that left its process group is
+                proc.zygote._reap_later(proc, cgroups)  # killed, and the cgroups removed,
+            # once it has exited (unmapping its memory takes ~2 ms): in the background, so
+            # that the next exercise does not wait for it; else the zygote reaps it
             return
         if proc is not None and proc.returncode is None:
             with contextlib.suppress(OSError):
@@ -970,6 +971,7 @@ class Zygote:
         self._lock = threading.Lock()
         self._sock: socket.socket | None = None
         self._dead = False
+        self._reaping: list[Future[None]] = []
         self.startup_seconds: float | None = None
 
     @classmethod
@@ -1059,7 +1061,13 @@ class Zygote:
         return worker
 
     def close(self) -> None:
-        """Stop the zygote and every worker it forked."""
+        """Stop the zygote and every worker it forked (after the cgroups of the closed ones are
+        swept and removed)."""
+        with self._lock:
+            reaping, self._reaping = self._reaping, []
+        for done in reaping:
+            with contextlib.suppress(Exception):
+                done.result(timeout=10.0)
         self._dead = True
         with self._lock:
             sock, self._sock = self._sock, None
@@ -1120,6 +1128,18 @@ class Zygote:
             raise SandboxError("the sandbox zygote sent an unreadable reply")
         return decoded, got
 
+    def _reap_later(self, proc: _Forked, cgroups: WorkerCgroups) -> None:
+        """Wait for a killed worker's exit, then kill what is left in its cgroups and remove
+        them, on a background thread; :meth:`close` waits for it."""
+        global _REAPER
+        with _REAPER_LOCK:
+            if _REAPER is None:
+                _REAPER = ThreadPoolExecutor(max_workers=1, thread_name_prefix="sandbox-reap")
+            done = _REAPER.submit(_sweep, proc, cgroups)
+        with self._lock:
+            self._reaping = [f for f in self._reaping if not f.done()]
+            self._reaping.append(done)
+
     def _fork(self, cfg: dict[str, int], cg_fds: Sequence[int]) -> tuple[int, list[int]]:
         reply, fds = self._ask({"op": "fork", "cfg": cfg}, cg_fds)
         pid = reply.get("pid")
@@ -1140,6 +1160,17 @@ class Zygote:
             return None
         code = reply.get("code")
         return code if type(code) is int else None
+
+
+_REAPER: ThreadPoolExecutor | None = None  # sweeps closed forked workers' cgroups
+_REAPER_LOCK = threading.Lock()
+
+
+def _sweep(proc: _Forked, cgroups: WorkerCgroups) -> None:
+    proc.wait(timeout=2.0)  # (a cgroup can be removed once its processes have exited)
+    cgroups.kill()
+    cgroups.close_fds()
+    cgroups.remove(wait=2.0)
 
 
 def _readable(fd: int) -> bool:
