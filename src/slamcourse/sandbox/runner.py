@@ -204,16 +204,23 @@ class _Resources:
         self.tmpdir: str | None = None
         self.closed = False
 
-    def kill(self) -> None:
-        """SIGKILL the worker's process group, its cgroups (daemons too) and reap it."""
+    def kill(self, closing: bool = False) -> None:
+        """SIGKILL the worker's process group, its cgroups (daemons too) and reap it.
+        ``closing``: the worker is being closed (see below)."""
         proc = self.proc
         if isinstance(proc, _Forked):  # its pid is the zygote's to signal, not ours
             proc.kill()  # SIGKILL to its process group, sent by the time the zygote answers
-            cgroups, self.cgroups = self.cgroups, None
-            if cgroups is not None:  # anything it started that left its process group is
-                proc.zygote._reap_later(proc, cgroups)  # killed, and the cgroups removed,
-            # once it has exited (unmapping its memory takes ~2 ms): in the background, so
-            # that the next exercise does not wait for it; else the zygote reaps it
+            if self.cgroups is None:
+                return  # the zygote reaps it: waiting for it to unmap its memory (~2 ms) would
+                # only delay the next exercise
+            if closing:  # waiting for its exit, killing what is left in its cgroups (anything
+                # it started that left its process group) and removing them: in the
+                # background, so that the next exercise does not wait for it either
+                cgroups, self.cgroups = self.cgroups, None
+                proc.zygote._reap_later(proc, cgroups)
+            else:  # (a timeout or crash: its end is reported, so it is awaited)
+                proc.wait(timeout=2.0)  # (its cgroups can be removed once it has exited)
+                self.cgroups.kill()
             return
         if proc is not None and proc.returncode is None:
             with contextlib.suppress(OSError):
@@ -231,7 +238,7 @@ class _Resources:
             return
         self.closed = True
         try:
-            self.kill()
+            self.kill(closing=True)
         finally:
             for fd in self.fds:
                 with contextlib.suppress(OSError):
@@ -1132,10 +1139,14 @@ class Zygote:
         """Wait for a killed worker's exit, then kill what is left in its cgroups and remove
         them, on a background thread; :meth:`close` waits for it."""
         global _REAPER
-        with _REAPER_LOCK:
-            if _REAPER is None:
-                _REAPER = ThreadPoolExecutor(max_workers=1, thread_name_prefix="sandbox-reap")
-            done = _REAPER.submit(_sweep, proc, cgroups)
+        try:
+            with _REAPER_LOCK:
+                if _REAPER is None:
+                    _REAPER = ThreadPoolExecutor(max_workers=1, thread_name_prefix="sandbox-reap")
+                done = _REAPER.submit(_sweep, proc, cgroups)
+        except RuntimeError:  # the interpreter is shutting down: no new threads; sweep now
+            _sweep(proc, cgroups)
+            return
         with self._lock:
             self._reaping = [f for f in self._reaping if not f.done()]
             self._reaping.append(done)
