@@ -437,3 +437,21 @@ def test_closed_workers_cgroups_are_swept_and_removed_by_the_time_the_zygote_clo
     threading.Timer(0.3, gate.set).start()
     zygote.close()
     assert [d for d in dirs if d.exists()] == []
+
+
+def test_a_zygote_started_ahead_and_never_taken_is_closed_at_exit() -> None:
+    """The last submissions of a batch may hand in no code: the zygote started ahead for them
+    is closed when the process ends, not left to the interpreter (an unclosed socket)."""
+    import subprocess
+    import sys
+
+    code = (
+        "from slamcourse.grading.pool import start_zygote_ahead\n"
+        "start_zygote_ahead(require_isolation=False)\n"
+        "import time; time.sleep(1.0)\n"
+    )
+    done = subprocess.run(
+        [sys.executable, "-W", "default", "-c", code], capture_output=True, text=True, timeout=60
+    )
+    assert done.returncode == 0, done.stderr
+    assert "unclosed" not in done.stderr, done.stderr

@@ -2,10 +2,13 @@
 
 from __future__ import annotations
 
+import copy
 import importlib.util
 import inspect
 import sys
+import threading
 import zlib
+from collections import OrderedDict
 from pathlib import Path
 from types import ModuleType
 from typing import Any
@@ -13,12 +16,23 @@ from typing import Any
 from slamcourse.course.model import ExerciseSpec
 from slamcourse.errors import CourseError, Problem
 
-_modules: dict[tuple[Path, int, int], ModuleType] = {}
+_modules: dict[tuple[Path, int, int], ModuleType] = {}  # (never dropped: ids stay unique)
+_resolved: dict[Path, Path] = {}
+
+RESULTS_KEPT = 4096
+"""Reference results kept for scalar arguments (:func:`call`): a text exercise's answer is
+computed to grade it and again for its explanation and misconceptions, and a batch meets the
+same variants again."""
+_results: OrderedDict[tuple[int, str, str], Any] = OrderedDict()
+_results_lock = threading.Lock()
+_SCALARS = frozenset({int, float, str, bool, type(None)})
 
 
 def module_for(spec: ExerciseSpec) -> ModuleType:
     """Import the ``reference.py`` beside ``spec``'s file (again only when it has changed)."""
-    path = spec.reference_path.resolve()
+    path = _resolved.get(spec.reference_path)
+    if path is None:
+        path = _resolved.setdefault(spec.reference_path, spec.reference_path.resolve())
     try:
         stat = path.stat()
         key = (path, stat.st_mtime_ns, stat.st_size)
@@ -50,7 +64,10 @@ def module_for(spec: ExerciseSpec) -> ModuleType:
 
 def function(spec: ExerciseSpec, name: str, line: int) -> Any:
     """The function ``name`` of the reference module; a missing name is reported at ``line``."""
-    module = module_for(spec)
+    return _function_in(module_for(spec), spec, name, line)
+
+
+def _function_in(module: ModuleType, spec: ExerciseSpec, name: str, line: int) -> Any:
     fn = getattr(module, name, None)
     if not callable(fn):
         public = [n for n, v in vars(module).items() if callable(v) and not n.startswith("_")]
@@ -67,10 +84,22 @@ def function(spec: ExerciseSpec, name: str, line: int) -> Any:
 
 
 def call(spec: ExerciseSpec, name: str, line: int, kwargs: dict[str, Any]) -> Any:
-    """Call reference function ``name`` with ``kwargs``; its failure is a :class:`CourseError`."""
-    fn = function(spec, name, line)
+    """Call reference function ``name`` with ``kwargs``; its failure is a :class:`CourseError`.
+
+    Reference code is deterministic, so a result for arguments that are all plain scalars (a
+    variant's parameters) is kept (the last :data:`RESULTS_KEPT`, per loaded module: a changed
+    ``reference.py`` is a new module) and a copy of it returned when the same call comes again;
+    failures are not kept."""
+    module = module_for(spec)
+    fn = _function_in(module, spec, name, line)
+    key = _result_key(module, name, kwargs)
+    if key is not None:
+        with _results_lock:
+            if key in _results:
+                _results.move_to_end(key)
+                return copy.deepcopy(_results[key])
     try:
-        return fn(**kwargs)
+        value = fn(**kwargs)
     except Exception as exc:
         path = spec.reference_path.resolve()
         where = _error_line(exc, path)
@@ -87,6 +116,23 @@ def call(spec: ExerciseSpec, name: str, line: int, kwargs: dict[str, Any]) -> An
                 f"{name}({args}) raised {type(exc).__name__}: {exc}",
             )
         ) from None
+    if key is not None:
+        with _results_lock:
+            _results[key] = copy.deepcopy(value)
+            while len(_results) > RESULTS_KEPT:
+                _results.popitem(last=False)
+    return value
+
+
+def _result_key(
+    module: ModuleType, name: str, kwargs: dict[str, Any]
+) -> tuple[int, str, str] | None:
+    """The key of a call whose arguments are all plain scalars (their reprs are exact: a float's
+    is the shortest that reads back to the same bits), else None: not kept. The module is the
+    loaded ``reference.py`` (kept for the process's life, so its id is never reused)."""
+    if any(type(v) not in _SCALARS for v in kwargs.values()):
+        return None
+    return (id(module), name, repr(sorted(kwargs.items())))
 
 
 def _error_line(exc: BaseException, path: Path) -> int | None:

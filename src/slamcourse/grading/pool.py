@@ -9,6 +9,7 @@ server would be killed when that thread ends.
 
 from __future__ import annotations
 
+import atexit
 import contextlib
 import threading
 from concurrent.futures import Future, ThreadPoolExecutor
@@ -39,12 +40,24 @@ def start_zygote_ahead(*, require_isolation: bool) -> None:
             return
         if _AHEAD_SPAWNER is None:
             _AHEAD_SPAWNER = ThreadPoolExecutor(max_workers=1, thread_name_prefix="sandbox-ahead")
+            atexit.register(_close_ahead)
         _AHEAD[require_isolation] = _AHEAD_SPAWNER.submit(
             Zygote.spawn,
             require_isolation=require_isolation,
             preload=ZYGOTE_PRELOAD,
             preload_first=True,  # its scipy import, too, is done before its learner needs it
         )
+
+
+def _close_ahead() -> None:
+    """At exit: close a zygote started ahead that no submission took (the last submissions of
+    a batch had no code), rather than leave its socket and sandbox to the interpreter's end."""
+    with _AHEAD_LOCK:
+        pending = list(_AHEAD.values())
+        _AHEAD.clear()
+    for future in pending:
+        with contextlib.suppress(Exception):
+            future.result(timeout=10.0).close()
 
 
 def _zygote_ahead(require_isolation: bool) -> Future[Zygote] | None:
