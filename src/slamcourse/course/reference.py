@@ -21,8 +21,7 @@ _resolved: dict[Path, Path] = {}
 
 RESULTS_KEPT = 4096
 """Reference results kept for scalar arguments (:func:`call`): a text exercise's answer is
-computed to grade it and again for its explanation and misconceptions, and a batch meets the
-same variants again."""
+computed to grade it and again to explain it, and a batch meets the same variants again."""
 _results: OrderedDict[tuple[int, str, str], Any] = OrderedDict()
 _results_lock = threading.Lock()
 _SCALARS = frozenset({int, float, str, bool, type(None)})
