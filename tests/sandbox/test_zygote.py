@@ -89,10 +89,11 @@ def test_a_call_that_changes_an_argument_is_reported(make_worker: MakeWorker) ->
 def test_every_kind_of_in_place_change_is_found(
     make_worker: MakeWorker, with_array: bool, batched: bool
 ) -> None:
-    """A batch's arguments are compared with the pickle each call's arguments were read from
-    (pickled again: same bytes, unchanged; else one by one), a single call's with deep copies:
-    both find the same changes by the same rule (types exact, floats by value, NaN equal to
-    NaN, -0.0 equal to 0.0), whether or not the request holds an array."""
+    """A batch's arguments are compared with the pickle each call's arguments were read from,
+    a single call's (sent as JSON) with a pickle the worker makes before the call (pickled
+    again: same bytes, unchanged; else one by one): both find the same changes by the same rule
+    (types exact, floats by value, NaN equal to NaN, -0.0 equal to 0.0), whether or not the
+    request holds an array."""
     worker, loaded = make_worker(
         """
         import numpy as np

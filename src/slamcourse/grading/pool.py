@@ -119,15 +119,7 @@ class WorkerPool:
         )
 
     def _zygote_later(self) -> Future[Zygote]:
-        if self._zygote is not None and self._zygote.done():
-            try:
-                old: Zygote | None = self._zygote.result()
-            except SandboxError:
-                old = None
-            if old is None or not old.alive:  # e.g. the learner's code killed it
-                if old is not None:
-                    old.close()
-                self._zygote = None  # the next exercise gets a new one
+        self._zygote = _usable(self._zygote)  # (e.g. the learner's code killed it: a new one)
         if self._zygote is None:
             self._zygote = _usable(_zygote_ahead(self.require_isolation))  # started ahead
         if self._spawner is None:

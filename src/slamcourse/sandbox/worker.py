@@ -389,9 +389,10 @@ class Session:
     def call(self, args: list[Any], check: bool, record: bytes | None = None) -> dict[str, Any]:
         """Call the function once. With ``check``, the arguments are compared afterwards with
         what they were: ``mutated`` lists the positions of those the call changed in place.
-        ``record``: the pickle the arguments were read from (a batch sends one per call), which
-        is then the record to compare with; without it they are deep-copied first."""
-        pristine = [_copy(a) for a in args] if check and record is None else None
+        ``record``: the pickle the arguments were read from (a batch sends one per call); a
+        request sent as JSON has its arguments pickled here, before the call."""
+        if check and record is None:
+            record = _pickle(args, 5)
         try:
             result = self.function(*args)
         except (SystemExit, KeyboardInterrupt):
@@ -405,8 +406,8 @@ class Session:
                 reply = {"status": "ok", "value": encode(result)}
             except (_Oversize, RecursionError, MemoryError):
                 reply = {"status": "oversize", "size": None}
-        if check:
-            changed = _changed(args, pristine, record)
+        if record is not None:
+            changed = _changed(args, record)
             if changed:
                 reply["mutated"] = changed
         return reply
@@ -434,40 +435,25 @@ class Session:
                 return
 
 
-def _changed(args: list[Any], pristine: list[Any] | None, record: bytes | None) -> list[int]:
+def _changed(args: list[Any], record: bytes) -> list[int]:
     """The positions of the arguments a call changed in place, by :func:`_unchanged`'s rule.
-    With ``record`` (the pickle they were read from), arguments that pickle to the same bytes
-    again are unchanged (one C-speed pickling, no copy made before the call: the same
+    ``record`` is the pickle they were read from (or made of them before the call): if they
+    pickle to the same bytes again, they are unchanged (one C-speed pickling, no copy: the same
     structure pickles to the same bytes); otherwise they are compared one by one with the
-    record read again (``-0.0`` for ``0.0`` is no change, as with a copy)."""
-    if record is not None:
-        try:
-            if _pickle(args, 5) == record:
-                return []
-        except BaseException:  # the call put in something that cannot be pickled
-            pass
-        pristine = _unpickle(record)
-    assert pristine is not None
-    return [i for i in range(_len(pristine)) if not _unchanged(pristine[i], args[i])]
-
-
-def _copy(value: Any) -> Any:
-    """A deep copy of an argument the parent sent (plain data, tuples, dicts, arrays)."""
-    t = type(value)
-    if t is list:
-        return [_copy(v) for v in value]
-    if t is tuple:
-        return tuple(_copy(v) for v in value)
-    if t is dict:
-        return {k: _copy(v) for k, v in value.items()}
-    if t is _NDARRAY:
-        return value.copy()
-    return value
+    record read again (``-0.0`` for ``0.0`` is no change)."""
+    try:
+        if _pickle(args, 5) == record:
+            return []
+    except BaseException:  # the call put in something that cannot be pickled
+        pass
+    before = _unpickle(record)
+    return [i for i in range(_len(before)) if not _unchanged(before[i], args[i])]
 
 
 def _unchanged(before: Any, after: Any) -> bool:
-    """True if ``after`` (an argument after the call) still equals its copy ``before``:
-    same types, same shapes and dtypes, same values bit for bit (NaN equals NaN)."""
+    """True if ``after`` (an argument after the call) still equals ``before`` (what it was, read
+    from the record): same types, same shapes and dtypes, same values bit for bit (NaN equals
+    NaN; -0.0 equals 0.0)."""
     try:
         t = type(before)
         if type(after) is not t:
