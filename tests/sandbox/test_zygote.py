@@ -189,6 +189,71 @@ def test_a_batch_sent_pickled_arrives_exactly_as_one_sent_as_json(
     assert all(r.mutated == () for r in worker.call_many(batch))
 
 
+@pytest.mark.parametrize("hang", ["while True: pass", "time.sleep(60)", "sum(range(10**12))"])
+def test_a_call_that_hangs_after_quick_ones_is_the_one_timed_out(
+    make_worker: MakeWorker, hang: str
+) -> None:
+    """The quick calls before the hang return within one bell interval, so their replies are
+    written but never rung for: each still gets its own result, and the timeout is the hanging
+    call's (a pure-Python loop, a sleep, and C code that holds the interpreter lock)."""
+    worker, loaded = make_worker(
+        f"""
+        import time
+        def f(n):
+            if n < 0:
+                {hang}
+            return 2 * n
+        """,
+        limits=Limits(call_seconds=1.0),
+    )
+    assert loaded.ok
+    results = worker.call_many([[n] for n in range(40)] + [[-1], [5]])
+    assert [r.value for r in results[:40]] == [2 * n for n in range(40)]
+    assert len(results) == 41 and results[40].status == "timeout", results[40:]
+
+
+def test_a_batch_of_quick_calls_wakes_the_grader_a_few_times_not_once_per_call(
+    make_worker: MakeWorker, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The worker rings the grader's bell every few milliseconds of a batch, not per reply."""
+    import select
+
+    from slamcourse.sandbox import runner
+
+    worker, loaded = make_worker("def f(n):\n    return n + 1\n")
+    assert loaded.ok
+    waits = []
+    real = select.select
+
+    def counting(*args: object) -> object:
+        waits.append(args)
+        return real(*args)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(runner.select, "select", counting)
+    results = worker.call_many([[n] for n in range(1000)])
+    assert [r.value for r in results] == list(range(1, 1001))
+    assert len(waits) < 200, len(waits)
+
+
+def test_a_learner_who_closes_the_bell_is_still_answered(make_worker: MakeWorker) -> None:
+    """The bell's descriptor is the learner's to find and close: replies are then read every
+    few tens of milliseconds instead, and still each call's own."""
+    worker, loaded = make_worker(
+        """
+        import os, sys
+        os.close(int([a for a in sys.argv if a.startswith("bell=")][0][5:]))
+        def f(n):
+            print(n)
+            return -n
+        """
+    )
+    assert loaded.ok
+    results = worker.call_many([[n] for n in range(30)])
+    assert [r.value for r in results] == [-n for n in range(30)]
+    assert [r.stdout for r in results] == [f"{n}\n" for n in range(30)]
+    assert worker.call([7]).value == -7
+
+
 def test_a_flooding_call_stops_the_batch(make_worker: MakeWorker) -> None:
     worker, loaded = make_worker(
         """

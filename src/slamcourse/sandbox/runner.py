@@ -78,6 +78,8 @@ CallStatus = Literal["ok", "raised", "timeout", "crashed", "protocol_error"]
 Fatal = Literal["timeout", "crashed", "protocol_error"]
 FLOOD_MESSAGE = "your code printed more than"  # how a worker killed for its output is described
 _POLL = 0.05  # seconds between checks that the worker is still alive while waiting
+_POLL_REPLIES = 0.02  # ... and between reads of replies written without the bell (a call that
+# returned just before one that hangs: the worker rings the bell every few ms, not per reply)
 _LOAD_STATUSES = frozenset(
     {"ok", "syntax_error", "import_error", "missing_function", "not_callable", "signature"}
 )
@@ -279,6 +281,7 @@ class Worker:
         self._resp_r = -1
         self._out_r = -1
         self._err_r = -1
+        self._bell_r = -1
         self.startup_seconds: float | None = None
         """Seconds from :meth:`spawn` until the worker reported ready (None before)."""
         self.unenforced_limits: tuple[str, ...] = ()
@@ -310,8 +313,9 @@ class Worker:
         res, limits = self._res, self._limits
         req_r, req_w = os.pipe()
         resp_r, resp_w = os.pipe()
-        res.fds += [req_w, resp_r]
-        self._req_w, self._resp_r = req_w, resp_r
+        bell_r, bell_w = os.pipe()
+        res.fds += [req_w, resp_r, bell_r]
+        self._req_w, self._resp_r, self._bell_r = req_w, resp_r, bell_r
         try:
             if self._isolation.cgroups is not None:
                 res.cgroups = WorkerCgroups.create(self._isolation.cgroups, limits)
@@ -319,6 +323,7 @@ class Worker:
             worker_args = [
                 f"req={req_r}",
                 f"resp={resp_w}",
+                f"bell={bell_w}",
                 f"as={limits.memory_bytes}",
                 f"cpu={limits.cpu_seconds}",
                 f"fsize={limits.file_bytes}",
@@ -335,7 +340,7 @@ class Worker:
                 stdin=subprocess.DEVNULL,
                 stdout=subprocess.PIPE,
                 stderr=subprocess.PIPE,
-                pass_fds=(req_r, resp_w, *cg_fds),
+                pass_fds=(req_r, resp_w, bell_w, *cg_fds),
                 start_new_session=True,
                 env=env,
                 cwd=cwd,
@@ -346,12 +351,13 @@ class Worker:
         finally:
             os.close(req_r)
             os.close(resp_w)
+            os.close(bell_w)
             if res.cgroups is not None:
                 res.cgroups.close_fds()
         assert res.proc.stdout is not None and res.proc.stderr is not None
         self._out_r = res.proc.stdout.fileno()
         self._err_r = res.proc.stderr.fileno()
-        for fd in (self._resp_r, self._out_r, self._err_r, self._req_w):
+        for fd in (self._resp_r, self._out_r, self._err_r, self._req_w, self._bell_r):
             os.set_blocking(fd, False)
 
     def _start_forked(self, zygote: Zygote) -> None:
@@ -380,7 +386,7 @@ class Worker:
                 res.cgroups.close_fds()
         res.proc = _Forked(zygote, pid)
         res.fds += fds
-        self._req_w, self._resp_r, self._out_r, self._err_r = fds
+        self._req_w, self._resp_r, self._out_r, self._err_r, self._bell_r = fds
         for fd in fds:
             os.set_blocking(fd, False)
 
@@ -817,12 +823,25 @@ class Worker:
                 return finish("frame", frame=frame)
             if len(self._buffer) > limits.frame_bytes:
                 break
+            try:  # what the worker has written, rung or not (so never a reply left unread)
+                replies = os.read(self._resp_r, 1 << 16)
+            except BlockingIOError:
+                replies = None
+            except OSError:
+                replies = b""
+            if replies is not None:
+                if not replies:
+                    return crashed()
+                self._buffer += replies
+                continue
             now = time.monotonic()
             if now >= deadline:
                 return timed_out()
-            fds = [self._resp_r, self._out_r, self._err_r]
+            fds = [self._out_r, self._err_r]
+            if self._bell_r >= 0:
+                fds.append(self._bell_r)
             try:
-                readable, _w, _x = select.select(fds, [], [], min(deadline - now, _POLL))
+                readable, _w, _x = select.select(fds, [], [], min(deadline - now, _POLL_REPLIES))
             except InterruptedError:  # pragma: no cover
                 continue
             if self._out_r in readable:
@@ -831,14 +850,15 @@ class Worker:
                 _read_into(self._err_r, err_cap)
             if (self._out_r in readable or self._err_r in readable) and flooded():
                 return stop_flood()
-            if self._resp_r in readable:
+            if self._bell_r in readable:
                 try:
-                    chunk = os.read(self._resp_r, 1 << 16)
+                    rung = os.read(self._bell_r, 1 << 12)
                 except BlockingIOError:
-                    continue
-                if not chunk:
-                    return crashed()
-                self._buffer += chunk
+                    rung = b"!"
+                except OSError:
+                    rung = b""
+                if not rung:  # the bell was closed (the learner's code did it, or the worker
+                    self._bell_r = -1  # died: then its reply pipe ends too): poll replies
                 continue
             if not readable and proc.poll() is not None and not _readable(self._resp_r):
                 return crashed()
@@ -1154,7 +1174,7 @@ class Zygote:
     def _fork(self, cfg: dict[str, int], cg_fds: Sequence[int]) -> tuple[int, list[int]]:
         reply, fds = self._ask({"op": "fork", "cfg": cfg}, cg_fds)
         pid = reply.get("pid")
-        if reply.get("status") != "forked" or type(pid) is not int or len(fds) != 4:
+        if reply.get("status") != "forked" or type(pid) is not int or len(fds) != 5:
             for fd in fds:
                 os.close(fd)
             raise SandboxError("the sandbox zygote could not fork a worker")

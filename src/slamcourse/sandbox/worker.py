@@ -8,8 +8,8 @@ their code has run.
 
 Invocation (all values are decimal integers)::
 
-    python -I -B worker.py req=FD resp=FD as=BYTES cpu=SECONDS fsize=BYTES nofile=N nproc=N \
-        frame=BYTES [out=CHARS] [cg=FD,FD,...]
+    python -I -B worker.py req=FD resp=FD bell=FD as=BYTES cpu=SECONDS fsize=BYTES nofile=N \
+        nproc=N frame=BYTES [out=CHARS] [cg=FD,FD,...]
 
 Order of events:
 
@@ -21,6 +21,14 @@ Order of events:
    (arguments) and ``calls`` (many argument lists, one reply each; a batch's are pickled after
    the line: ``"pickled": N`` bytes, from the parent only). End of file on ``req`` means "exit
    now".
+
+Replies and the bell: every reply is written to ``resp`` as soon as its call returns, so that
+whatever has returned is in the pipe even if the next call never does; but the parent waits on
+``bell`` (a byte written there), not on ``resp``. The bell rings after the last reply of a
+request, and within a batch once :data:`RING_SECONDS` have passed or :data:`RING_BYTES` have been
+written since it last rang: a batch of quick calls wakes the parent every few milliseconds
+instead of once per call. (While it waits, the parent also reads ``resp`` every few tens of
+milliseconds, so replies written just before a call that hangs are found without a bell.)
 
 Learner output is muted past ``out`` characters per stream (over the worker's whole life):
 ``sys.stdout`` and ``sys.stderr`` become writers that keep the first ``out`` characters and
@@ -115,6 +123,7 @@ except Exception:  # numpy missing or broken: learners get an ImportError of the
 # Keep private references: learner code may monkeypatch the public names. This is robustness,
 # not security: the learner controls this whole process, and the parent trusts none of it.
 _write = os.write
+_monotonic = time.monotonic
 _b2a = binascii.b2a_base64
 _pickle, _unpickle = pickle.dumps, pickle.loads
 _ENCODER = json.JSONEncoder(allow_nan=True, separators=(",", ":"))
@@ -133,6 +142,8 @@ MAX_STR = 10_000  # characters of a returned string
 MAX_INT_BITS = 10_000  # bigger ints are not sent (JSON ints over 4300 digits are refused)
 MAX_ERROR = 2_000  # characters of an exception's text
 MAX_FRAMES = 20  # learner traceback frames kept (the innermost ones)
+RING_SECONDS = 0.005  # within a batch: the bell rings at least this often while calls return
+RING_BYTES = 32 << 10  # ... and once this much has been written since it rang (pipe: 64 KiB)
 BINARY_FLOATS = 16  # a float array of at least this many entries is sent as bytes, not text
 
 if _np is not None:
@@ -290,16 +301,21 @@ def decode_arg(obj: dict[str, Any]) -> Any:
 class Session:
     """The state of one worker: the loaded learner module and the function to call."""
 
-    def __init__(self, resp_fd: int, frame_limit: int) -> None:
+    def __init__(self, resp_fd: int, frame_limit: int, bell_fd: int = -1) -> None:
         self.resp_fd = resp_fd
+        self.bell_fd = bell_fd
         self.frame_limit = frame_limit
+        self.rung = _monotonic()  # when the bell last rang
+        self.unrung = 0  # bytes written to resp since
         self.filename = "<learner>"
         self.lines: list[str] = []
         self.function: Any = None
 
     # -- output ---------------------------------------------------------------------------------
 
-    def send(self, frame: dict[str, Any]) -> None:
+    def send(self, frame: dict[str, Any], last: bool = True) -> None:
+        """Write ``frame`` to ``resp``; ring the bell if it is the ``last`` of its request, or
+        if the bell is due (see the module's docstring)."""
         _flush_learner_output()
         _restore_builtins()
         frame["dropped"] = _STDOUT.dropped + _STDERR.dropped
@@ -312,6 +328,17 @@ class Session:
         while view:
             written = _write(self.resp_fd, view)
             view = view[written:]
+        self.unrung += _len(data)
+        if last or self.unrung >= RING_BYTES or _monotonic() - self.rung >= RING_SECONDS:
+            self.ring()
+
+    def ring(self) -> None:
+        try:  # noqa: SIM105 (a full bell pipe is ringing already; a closed one is noticed)
+            _write(self.bell_fd, b"!")
+        except OSError:
+            pass
+        self.rung = _monotonic()
+        self.unrung = 0
 
     # -- errors ---------------------------------------------------------------------------------
 
@@ -430,7 +457,7 @@ class Session:
             flooded = _STDOUT.written + _STDERR.written - before > _BUDGET
             if flooded:
                 reply["stop"] = True
-            self.send(reply)
+            self.send(reply, last=flooded or index + 1 == _len(req["calls"]))
             if flooded:
                 return
 
@@ -523,9 +550,11 @@ setattr(sys, "__stdout__", _STDOUT)  # noqa: B010 (the name is Final for type ch
 setattr(sys, "__stderr__", _STDERR)  # noqa: B010
 
 
-def serve(req_fd: int, resp_fd: int) -> int:
+def serve(req_fd: int, resp_fd: int, bell_fd: int) -> int:
     """Send ``ready``, then answer requests until end of file on ``req_fd``."""
-    session = Session(resp_fd, int(_CFG["frame"]))
+    session = Session(resp_fd, int(_CFG["frame"]), bell_fd)
+    with contextlib.suppress(OSError):
+        os.set_blocking(bell_fd, False)  # a full bell pipe must never stop a reply
     numpy_version = _np.__version__ if _np is not None else None
     ready = {"status": "ready", "numpy": numpy_version, "cgroups": _JOINED, "refused": _REFUSED}
     session.send({"id": 0, **ready})
@@ -594,7 +623,7 @@ def main() -> int:
     _allow_imports()
     if _ZYGOTE:
         return _zygote(int(_CFG["zygote"]))
-    return serve(int(_CFG["req"]), int(_CFG["resp"]))
+    return serve(int(_CFG["req"]), int(_CFG["resp"]), int(_CFG["bell"]))
 
 
 # -- zygote -------------------------------------------------------------------------------------
@@ -729,9 +758,10 @@ def _preload(names: list[str]) -> None:
 def _fork_worker(
     req: dict[str, Any], cg_fds: list[int], control_fd: int, libc: Any
 ) -> tuple[int, list[int]]:
-    """Fork one worker; returns its pid and the parent's ends of its four pipes."""
+    """Fork one worker; returns its pid and the parent's ends of its five pipes."""
     req_r, req_w = os.pipe()
     resp_r, resp_w = os.pipe()
+    bell_r, bell_w = os.pipe()
     out_r, out_w = os.pipe()
     err_r, err_w = os.pipe()
     pid = os.fork()
@@ -742,19 +772,19 @@ def _fork_worker(
             _prctl(libc, PR_SET_PDEATHSIG, 9)  # dies with the zygote
             os.dup2(out_w, 1)
             os.dup2(err_w, 2)
-            keep = {0, 1, 2, req_r, resp_w, *cg_fds}
+            keep = {0, 1, 2, req_r, resp_w, bell_w, *cg_fds}
             try:  # every other descriptor of the zygote goes (the control socket first)
                 open_fds = {int(fd) for fd in os.listdir("/proc/self/fd")}
             except OSError:
                 open_fds = set(range(3, 1024))
-            for fd in sorted(open_fds | {control_fd, req_w, resp_r, out_r, err_r}):
+            for fd in sorted(open_fds | {control_fd, req_w, resp_r, out_r, err_r, bell_r}):
                 if fd not in keep:
                     with contextlib.suppress(OSError):
                         os.close(fd)
             cfg = req.get("cfg", {})
             _CFG.update({k: str(v) for k, v in cfg.items()})
             _CFG["cg"] = ",".join(str(fd) for fd in cg_fds)
-            _CFG.update({"req": str(req_r), "resp": str(resp_w)})
+            _CFG.update({"req": str(req_r), "resp": str(resp_w), "bell": str(bell_w)})
             _CFG.pop("zygote", None)
             _CFG.pop("preload", None)
             _CFG.pop("preload_first", None)
@@ -768,7 +798,7 @@ def _fork_worker(
             for stream in (_STDOUT, _STDERR):
                 stream._left = _BUDGET
                 stream.dropped = stream.written = 0
-            code = serve(req_r, resp_w)
+            code = serve(req_r, resp_w, bell_w)
         except SystemExit as exc:
             code = exc.code if type(exc.code) is int else 1
         except BaseException:
@@ -777,9 +807,9 @@ def _fork_worker(
             with contextlib.suppress(BaseException):
                 _flush_learner_output()
             os._exit(code)
-    for fd in (req_r, resp_w, out_w, err_w, *cg_fds):
+    for fd in (req_r, resp_w, out_w, err_w, bell_w, *cg_fds):
         os.close(fd)
-    return pid, [req_w, resp_r, out_r, err_r]
+    return pid, [req_w, resp_r, out_r, err_r, bell_r]
 
 
 if __name__ == "__main__":
