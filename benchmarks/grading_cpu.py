@@ -1,9 +1,9 @@
 """CPU and wall time of one complete learner's code exercises: this tree against another revision.
 
 A "learner" is what the batch grader does for one complete submission's code: a new forking
-pool (its sandboxed zygote), every code exercise of the bundled course checked with the
-course's own solution against the batch's test set (built once, before the rounds), the pool
-closed. Each round runs in a process of its own, alternately with this tree's ``src`` and with
+pool (its sandboxed zygote: kept from the learner before, where the tree keeps it), every code
+exercise of the bundled course checked with the course's own solution against the batch's test
+set (built once, before the rounds), the pool closed. Each round runs in a process of its own, alternately with this tree's ``src`` and with
 ``--base``'s (a temporary checkout of that revision; the course itself is always this tree's,
 so only the engine differs), and is accounted for whole: the grader, its zygote, bubblewrap,
 the workers and the kernel's work for them, read from a ``cpuacct`` cgroup (cgroup v1) or the
@@ -89,7 +89,11 @@ def inner(rounds: int) -> None:
             tests = testset.build(spec, hidden_seeds=[testset.hidden_seed("bench", ex, 0)])
             items.append((spec, tests, Path(spec.options.solution).read_text()))
     import gc
+    import inspect
 
+    # as the batch grader's pools: the zygote kept from one learner to the next, where the
+    # tree can (from the first round on, which is not reported)
+    reuse = {"reuse": True} if "reuse" in inspect.signature(WorkerPool).parameters else {}
     gc.collect()
     gc.freeze()  # as a grading process does before each submission
     print(f"meter {meter.kind}", flush=True)
@@ -98,7 +102,7 @@ def inner(rounds: int) -> None:
     for _ in range(rounds + 1):  # the first round warms caches: not reported
         time.sleep(0.3)  # let the previous round's zygote finish exiting
         used, start = meter.read(), time.perf_counter()
-        pool = WorkerPool(fork=True)
+        pool = WorkerPool(fork=True, **reuse)
         for spec, tests, source in items:
             verdict = kind.check_source(
                 spec, source, "solution.py", tests=tests, shrink=False, spawn=pool.take

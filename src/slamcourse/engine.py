@@ -328,15 +328,19 @@ class Engine:
         ``warm_sandbox``: start a sandbox worker first, so its interpreter imports numpy while
         this process loads the course (a one-shot code check). ``fork_workers``: every code
         check gets a fresh worker forked from one sandboxed zygote of this engine (a batch
-        grader's engine, which serves one submission and checks many exercises). ``course``: the
-        course already loaded from ``settings.course`` (a batch loads it once per process; its
-        exercises are parsed once, not once per submission).
+        grader's engine, which serves one submission and checks many exercises); when the
+        engine closes, the zygote is reset and kept for the next such engine of this process,
+        or closed if it cannot be (see :class:`~slamcourse.grading.pool.WorkerPool`).
+        ``course``: the course already loaded from ``settings.course`` (a batch loads it once
+        per process; its exercises are parsed once, not once per submission).
         """
         settings = settings or Settings.from_env()
         activate_cache(settings.cache)
         engine_pool = None
         if warm_sandbox:
-            engine_pool = cls._new_pool(settings, keep_spare=False, fork=fork_workers)
+            engine_pool = cls._new_pool(
+                settings, keep_spare=False, fork=fork_workers, reuse=fork_workers
+            )
             engine_pool.warm()
         try:
             if course is None:
@@ -352,11 +356,16 @@ class Engine:
         return engine
 
     @staticmethod
-    def _new_pool(settings: Settings, *, keep_spare: bool, fork: bool = False) -> WorkerPool:
+    def _new_pool(
+        settings: Settings, *, keep_spare: bool, fork: bool = False, reuse: bool = False
+    ) -> WorkerPool:
         from slamcourse.grading.pool import WorkerPool
 
         return WorkerPool(
-            require_isolation=settings.require_isolation, keep_spare=keep_spare, fork=fork
+            require_isolation=settings.require_isolation,
+            keep_spare=keep_spare,
+            fork=fork,
+            reuse=reuse,
         )
 
     def start_workers(self) -> None:
@@ -576,7 +585,10 @@ class Engine:
         with self._pool_lock:
             if self._pool is None:
                 self._pool = self._new_pool(
-                    self.settings, keep_spare=False, fork=self._fork_workers
+                    self.settings,
+                    keep_spare=False,
+                    fork=self._fork_workers,
+                    reuse=self._fork_workers,
                 )
             pool = self._pool
         return pool.take(limits)

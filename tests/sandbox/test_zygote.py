@@ -521,3 +521,149 @@ def test_a_zygote_started_ahead_and_never_taken_is_closed_at_exit() -> None:
     )
     assert done.returncode == 0, done.stderr
     assert "unclosed" not in done.stderr, done.stderr
+
+
+# -- one zygote for one learner after another --------------------------------------------------
+
+LEAVE_FILES = """
+import os
+def f():
+    with open("/tmp/answers.txt", "w") as out:
+        out.write("mine")
+    os.makedirs("/tmp/a/b", exist_ok=True)
+    with open("/tmp/a/b/c.txt", "w") as out:
+        out.write("deep")
+    os.chmod("/tmp/a", 0o000)  # unreadable to its creator too
+    os.symlink("/usr/bin", "/tmp/link")  # a wipe must not follow it
+    return sorted(os.listdir("/tmp"))
+"""
+
+LIST_TMP = """
+import os
+def f():
+    return [os.getppid(), sorted(os.listdir("/tmp")), os.path.isdir("/usr/bin")]
+"""
+
+
+def test_a_kept_zygote_serves_the_next_learner_with_nothing_of_the_last(ns_level: str) -> None:
+    """A batch grader's pool hands its zygote to the next learner's pool once it is reset:
+    the same zygote (no sandbox, interpreter or scipy started again), an empty /tmp, and
+    nothing the last learner's files pointed at removed."""
+    from slamcourse.grading import pool as pool_module
+
+    first = pool_module.WorkerPool(fork=True, reuse=True, require_isolation=True)
+    worker = first.take(Limits())
+    assert worker.load(textwrap.dedent(LEAVE_FILES), "f.py", "f").ok
+    assert worker.call([]).value == ["a", "answers.txt", "link"]
+    zygote = first._zygote.result()  # type: ignore[union-attr]
+    worker.close()
+    first.close()
+    assert pool_module._KEPT.get(True) is zygote and zygote.alive  # reset clean: kept
+    second = pool_module.WorkerPool(fork=True, reuse=True, require_isolation=True)
+    try:
+        other = second.take(Limits())
+        assert second._zygote is not None and second._zygote.result() is zygote
+        assert other.load(textwrap.dedent(LIST_TMP), "f.py", "f").ok
+        _parent, listing, usr = other.call([]).value
+        assert listing == [] and usr is True
+        other.close()
+    finally:
+        second.close()
+        pool_module._close_ahead()  # (the zygote kept after the second learner)
+    assert not zygote.alive
+
+
+@pytest.mark.parametrize(
+    "leave",
+    [
+        "import os, time\n"  # a daemon: out of the worker's process group and session
+        "def f():\n"
+        "    pid = os.fork()\n"
+        "    if pid == 0:\n"
+        "        os.setsid()\n"
+        "        if os.fork() == 0:\n"
+        "            time.sleep(60)\n"
+        "        os._exit(0)\n"
+        "    os.waitpid(pid, 0)\n"
+        "    return 1\n",
+        "import os, resource\n"  # the zygote's limits, lowered for the next learner's workers
+        "def f():\n"
+        "    resource.prlimit(os.getppid(), resource.RLIMIT_NOFILE, (20, 20))\n"
+        "    return 1\n",
+        "import os\n"  # the zygote reniced: the next learner's workers would inherit it
+        "def f():\n"
+        "    os.setpriority(os.PRIO_PROCESS, os.getppid(), 15)\n"
+        "    return 1\n",
+        "import os\n"  # /tmp made unwritable for the next learner
+        "def f():\n"
+        "    os.chmod('/tmp', 0o500)\n"
+        "    return 1\n",
+        "import ctypes\n"  # a System V shared memory segment outlives its creator
+        "def f():\n"
+        "    libc = ctypes.CDLL(None, use_errno=True)\n"
+        "    return 1 if libc.shmget(0, 4096, 0o1000 | 0o600) >= 0 else ctypes.get_errno()\n",
+    ],
+    ids=["daemon", "prlimit", "renice", "tmp-mode", "sysv-shm"],
+)
+def test_a_zygote_that_keeps_anything_of_a_learner_is_not_reset(
+    ns_zygote: Zygote, leave: str, request: pytest.FixtureRequest
+) -> None:
+    """What one learner's code may leave or change in the sandbox that could reach the next
+    learner's workers makes the reset fail (the pool then closes the zygote)."""
+    worker = load(ns_zygote, leave)
+    assert worker.call([]).value == 1  # type: ignore[attr-defined]
+    why = ns_zygote.reset()  # (the worker itself is killed by the reset)
+    expected = {
+        "daemon": "1 process(es) of the last learner still running",
+        "prlimit": "the zygote's RLIMIT_NOFILE changed",
+        "renice": "the zygote's nice value changed",
+        "tmp-mode": "the zygote's /tmp's mode or owner changed",
+        "sysv-shm": "a System V IPC object (shm) was left",
+    }[request.node.callspec.id]
+    assert why == expected
+    worker.close()  # type: ignore[attr-defined]
+
+
+def test_a_zygote_reset_after_a_clean_learner_is_fit_and_still_forks(ns_zygote: Zygote) -> None:
+    worker = load(ns_zygote, "def f(x):\n    return x\n")
+    assert worker.call([3]).value == 3  # type: ignore[attr-defined]
+    worker.close()  # type: ignore[attr-defined]
+    assert ns_zygote.reset() is None
+    again = load(ns_zygote, "def f(x):\n    return -x\n")
+    assert again.call([3]).value == -3  # type: ignore[attr-defined]
+    again.close()  # type: ignore[attr-defined]
+
+
+def test_a_pool_whose_zygote_cannot_be_reset_gives_the_next_learner_a_new_one(
+    ns_level: str,
+) -> None:
+    from slamcourse.grading import pool as pool_module
+
+    first = pool_module.WorkerPool(fork=True, reuse=True, require_isolation=True)
+    worker = first.take(Limits())
+    source = "import os\ndef f():\n    os.chmod('/tmp', 0o500)\n    return 1\n"
+    assert worker.load(source, "f.py", "f").ok and worker.call([]).value == 1
+    zygote = first._zygote.result()  # type: ignore[union-attr]
+    worker.close()
+    first.close()
+    assert not zygote.alive and True not in pool_module._KEPT
+    second = pool_module.WorkerPool(fork=True, reuse=True, require_isolation=True)
+    try:
+        other = second.take(Limits())
+        assert second._zygote is not None and second._zygote.result() is not zygote
+        assert other.load(textwrap.dedent(LIST_TMP), "f.py", "f").ok
+        assert other.call([]).value[1] == []
+        other.close()
+    finally:
+        second.close()
+        pool_module._close_ahead()
+
+
+def test_without_namespaces_a_zygote_is_never_kept() -> None:
+    """Without a pid namespace the zygote cannot see every process a learner left."""
+    with Zygote.spawn(force="rlimits") as fallback:
+        worker = load(fallback, "def f(x):\n    return x\n")
+        worker.close()  # type: ignore[attr-defined]
+        assert fallback.reset() == (
+            "no pid namespace: the processes a learner left cannot all be seen"
+        )

@@ -24,7 +24,19 @@ per import otherwise, in every worker of an exercise that imports it)."""
 
 _AHEAD_LOCK = threading.Lock()
 _AHEAD: dict[bool, Future[Zygote]] = {}  # by require_isolation: a zygote nobody has used yet
+_KEPT: dict[bool, Zygote] = {}  # by require_isolation: a zygote reset after one learner
 _AHEAD_SPAWNER: ThreadPoolExecutor | None = None  # lives as long as the process (see below)
+
+
+def _lifelong_spawner() -> ThreadPoolExecutor:
+    """The thread that spawns every zygote that may outlive the pool that asked for it (one
+    started ahead, one kept between learners): bubblewrap's ``--die-with-parent`` follows the
+    thread that started it, so it lives as long as the process. Call with ``_AHEAD_LOCK``."""
+    global _AHEAD_SPAWNER
+    if _AHEAD_SPAWNER is None:
+        _AHEAD_SPAWNER = ThreadPoolExecutor(max_workers=1, thread_name_prefix="sandbox-ahead")
+        atexit.register(_close_ahead)
+    return _AHEAD_SPAWNER
 
 
 def start_zygote_ahead(*, require_isolation: bool) -> None:
@@ -34,14 +46,10 @@ def start_zygote_ahead(*, require_isolation: bool) -> None:
     fresh zygote that has served nobody, so no two learners share one. It is spawned from a
     thread that lives as long as the process, since bubblewrap's ``--die-with-parent`` follows
     the thread that started it."""
-    global _AHEAD_SPAWNER
     with _AHEAD_LOCK:
         if require_isolation in _AHEAD:
             return
-        if _AHEAD_SPAWNER is None:
-            _AHEAD_SPAWNER = ThreadPoolExecutor(max_workers=1, thread_name_prefix="sandbox-ahead")
-            atexit.register(_close_ahead)
-        _AHEAD[require_isolation] = _AHEAD_SPAWNER.submit(
+        _AHEAD[require_isolation] = _lifelong_spawner().submit(
             Zygote.spawn,
             require_isolation=require_isolation,
             preload=ZYGOTE_PRELOAD,
@@ -51,13 +59,43 @@ def start_zygote_ahead(*, require_isolation: bool) -> None:
 
 def _close_ahead() -> None:
     """At exit: close a zygote started ahead that no submission took (the last submissions of
-    a batch had no code), rather than leave its socket and sandbox to the interpreter's end."""
+    a batch had no code, or every learner's zygote could be kept for the next), and the one
+    kept after the last learner, rather than leave their sockets and sandboxes to the
+    interpreter's end."""
     with _AHEAD_LOCK:
         pending = list(_AHEAD.values())
         _AHEAD.clear()
+        kept = list(_KEPT.values())
+        _KEPT.clear()
+    for zygote in kept:
+        with contextlib.suppress(Exception):
+            zygote.close()
     for future in pending:
         with contextlib.suppress(Exception):
             future.result(timeout=10.0).close()
+
+
+def _keep(zygote: Zygote, require_isolation: bool) -> None:
+    """After a learner's pool closes: keep its zygote for the next learner if it can be reset
+    (:meth:`~slamcourse.sandbox.Zygote.reset`: nothing of this learner left in its sandbox),
+    else close it."""
+    if zygote.alive and zygote.reset() is None:
+        with _AHEAD_LOCK:
+            if require_isolation not in _KEPT:
+                _lifelong_spawner()  # (registers the closing at exit)
+                _KEPT[require_isolation] = zygote
+                return
+    zygote.close()
+
+
+def _kept(require_isolation: bool) -> Future[Zygote] | None:
+    with _AHEAD_LOCK:
+        zygote = _KEPT.pop(require_isolation, None)
+    if zygote is None:
+        return None
+    done: Future[Zygote] = Future()
+    done.set_result(zygote)
+    return done
 
 
 def _zygote_ahead(require_isolation: bool) -> Future[Zygote] | None:
@@ -88,9 +126,16 @@ class WorkerPool:
 
     ``fork``: workers are forked from one sandboxed :class:`~slamcourse.sandbox.Zygote`
     (started by :meth:`warm` or the first :meth:`take`), each a fresh process with its own
-    limits, pipes and cgroup, without an interpreter start or numpy import of its own. For an
-    engine that serves ONE learner's submission (the batch grader): workers of one zygote
-    share its namespaces, so a zygote never serves two learners.
+    limits, pipes and cgroup, without an interpreter start or numpy import of its own. Workers
+    of one zygote share its namespaces (its ``/tmp``, its pid namespace), so a zygote serves
+    one learner at a time.
+
+    ``reuse`` (with ``fork``; an engine that serves ONE learner's submission: the batch
+    grader): when this pool closes, its zygote is reset (:meth:`~slamcourse.sandbox.Zygote.
+    reset`: every worker killed, and the sandbox proven to hold nothing of this learner) and
+    kept for the next reusing pool of the process, which then starts no sandbox, interpreter,
+    numpy and scipy of its own (~0.3 CPU-s per submission); a zygote that cannot be reset is
+    closed, and the next learner gets a fresh one (the one started ahead, if any).
     """
 
     def __init__(
@@ -100,11 +145,13 @@ class WorkerPool:
         limits: Limits | None = None,
         keep_spare: bool = False,
         fork: bool = False,
+        reuse: bool = False,
     ) -> None:
         self.require_isolation = require_isolation
         self.limits = limits
         self.keep_spare = keep_spare
         self.fork = fork
+        self.reuse = reuse and fork
         self._zygote: Future[Zygote] | None = None
         self._forked: Future[tuple[Zygote, Any, Worker] | None] | None = None
         self._lock = threading.Lock()
@@ -120,12 +167,19 @@ class WorkerPool:
 
     def _zygote_later(self) -> Future[Zygote]:
         self._zygote = _usable(self._zygote)  # (e.g. the learner's code killed it: a new one)
+        if self._zygote is None and self.reuse:
+            self._zygote = _usable(_kept(self.require_isolation))  # reset after a learner
         if self._zygote is None:
             self._zygote = _usable(_zygote_ahead(self.require_isolation))  # started ahead
         if self._spawner is None:
             self._spawner = ThreadPoolExecutor(max_workers=1, thread_name_prefix="sandbox-spawn")
         if self._zygote is None:
-            self._zygote = self._spawner.submit(
+            if self.reuse:  # it may outlive this pool (and this pool's spawning thread)
+                with _AHEAD_LOCK:
+                    spawner = _lifelong_spawner()
+            else:
+                spawner = self._spawner
+            self._zygote = spawner.submit(
                 Zygote.spawn, require_isolation=self.require_isolation, preload=ZYGOTE_PRELOAD
             )
         return self._zygote
@@ -214,7 +268,10 @@ class WorkerPool:
             zygote, self._zygote = self._zygote, None
         if zygote is not None:
             with contextlib.suppress(SandboxError):
-                zygote.result().close()
+                if self.reuse:
+                    _keep(zygote.result(), self.require_isolation)
+                else:
+                    zygote.result().close()
         with self._lock:
             pending, self._spare = self._spare, None
             spawner, self._spawner = self._spawner, None

@@ -1087,14 +1087,42 @@ class Zygote:
         worker._start_forked(self)
         return worker
 
-    def close(self) -> None:
-        """Stop the zygote and every worker it forked (after the cgroups of the closed ones are
-        swept and removed)."""
+    def reset(self) -> str | None:
+        """Make the zygote fit to serve ANOTHER learner, or say why it is not (None: it is).
+
+        Every worker it forked is killed and reaped (closed ones: their cgroups swept and
+        removed first), and the zygote proves the sandbox holds nothing of the last learner:
+        no process but its own and bubblewrap's init in the pid namespace, ``/tmp`` emptied,
+        no System V IPC object, its own inheritable attributes (resource limits, nice value,
+        affinity, scheduling, cgroups, ``/tmp``'s mode) as they were when it started (see
+        ``reset`` in ``worker.py``). Only under namespaces: without a pid namespace the
+        zygote cannot see every process a learner's code may have left. A zygote that is not
+        fit should be closed."""
+        if not self._isolation.isolated:
+            return "no pid namespace: the processes a learner left cannot all be seen"
+        self._await_reaping()
+        try:
+            reply, fds = self._ask({"op": "reset"}, (), self._limits.start_seconds)
+        except SandboxError as exc:
+            return str(exc)
+        for fd in fds:
+            os.close(fd)
+        if reply.get("status") == "clean":
+            return None
+        why = reply.get("why")
+        return why if type(why) is str else "the sandbox zygote could not be reset"
+
+    def _await_reaping(self) -> None:
         with self._lock:
             reaping, self._reaping = self._reaping, []
         for done in reaping:
             with contextlib.suppress(Exception):
                 done.result(timeout=10.0)
+
+    def close(self) -> None:
+        """Stop the zygote and every worker it forked (after the cgroups of the closed ones are
+        swept and removed)."""
+        self._await_reaping()
         self._dead = True
         with self._lock:
             sock, self._sock = self._sock, None

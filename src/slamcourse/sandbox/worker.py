@@ -633,6 +633,17 @@ def main() -> int:
 # passed with SCM_RIGHTS) forks a fresh worker that contains itself exactly as a started one
 # does (cgroups joined through the descriptors sent along, every resource limit set) and then
 # serves its own pipes, which are sent back. The zygote runs no learner code itself.
+#
+# ``reset`` (asked only under namespaces, between two learners' submissions): kill and reap
+# every worker, then prove that nothing of the last learner is left that could reach the next
+# one: no process in the sandbox's pid namespace but bubblewrap's init (pid 1) and the zygote;
+# ``/tmp``, the one writable file system, emptied; no System V IPC object; and none of the
+# zygote's own attributes that another process of the sandbox (same user) may change, and
+# that its workers would inherit, changed since it started (resource limits, nice value, CPU
+# affinity, scheduling policy, cgroups, ``/tmp``'s owner and mode). Its memory cannot have
+# been touched: it is not dumpable, so no process of the sandbox may ptrace it or open its
+# ``/proc/PID/mem``. Replies ``clean``, or ``dirty`` with the reason (the grader then closes
+# it and starts another).
 
 
 def _prctl(libc: Any, option: int, value: int) -> None:
@@ -642,6 +653,91 @@ def _prctl(libc: Any, option: int, value: int) -> None:
 
 PR_SET_PDEATHSIG = 1
 PR_SET_DUMPABLE = 4
+
+
+def _own_state() -> list[tuple[str, Any]]:
+    """The zygote's attributes that a process of the sandbox could change from outside (see
+    ``reset`` above) and its workers would inherit, each with its name."""
+    state: list[tuple[str, Any]] = []
+    limits: dict[int, str] = {}  # (RLIMIT_OFILE is RLIMIT_NOFILE)
+    for name in sorted(n for n in dir(resource) if n.startswith("RLIMIT_")):
+        limits.setdefault(getattr(resource, name), name)
+    for which, name in limits.items():
+        try:
+            state.append((name, resource.getrlimit(which)))
+        except (ValueError, OSError):
+            state.append((name, None))
+    probes = (
+        ("nice value", lambda: os.getpriority(os.PRIO_PROCESS, 0)),
+        ("CPU affinity", lambda: sorted(os.sched_getaffinity(0))),
+        ("scheduling policy", lambda: os.sched_getscheduler(0)),
+        ("scheduling priority", lambda: os.sched_getparam(0).sched_priority),
+        ("/tmp's mode or owner", lambda: (lambda st: (st.st_mode, st.st_uid))(os.stat("/tmp"))),
+    )
+    for name, probe in probes:
+        try:
+            state.append((name, probe()))
+        except (AttributeError, OSError) as exc:
+            state.append((name, type(exc).__name__))
+    try:
+        with open("/proc/self/cgroup", encoding="utf-8", errors="replace") as cgroups:
+            state.append(("cgroups", cgroups.read()))
+    except OSError as exc:
+        state.append(("cgroups", type(exc).__name__))
+    return state
+
+
+def _wipe(path: str) -> None:
+    """Remove everything under ``path`` (never following a symbolic link); raises OSError or
+    RecursionError when something cannot go."""
+    with os.scandir(path) as entries:
+        found = list(entries)
+    for entry in found:
+        if entry.is_dir(follow_symlinks=False):
+            with contextlib.suppress(OSError):
+                os.chmod(entry.path, 0o700)  # (a directory its creator made unreadable)
+            _wipe(entry.path)
+            os.rmdir(entry.path)
+        else:
+            os.unlink(entry.path)
+
+
+def _leftovers(started: list[tuple[str, Any]]) -> str | None:
+    """Why the sandbox is not as the zygote found it (None: it is); see ``reset`` above.
+    Called once every worker has been reaped."""
+    me = os.getpid()
+    pause = 0.001
+    deadline = time.monotonic() + 2.0
+    while True:  # a killed process may still be exiting (bubblewrap's init reaps orphans)
+        try:
+            others = sorted(int(p) for p in os.listdir("/proc") if p.isdigit())
+        except OSError as exc:
+            return f"cannot list processes ({exc})"
+        others = [p for p in others if p not in (1, me)]
+        if not others:
+            break
+        if time.monotonic() > deadline:
+            return f"{len(others)} process(es) of the last learner still running"
+        time.sleep(pause)
+        pause = min(2 * pause, 0.05)
+    try:
+        _wipe("/tmp")
+        if os.listdir("/tmp"):
+            return "/tmp could not be emptied"
+    except (OSError, RecursionError) as exc:
+        return f"/tmp could not be emptied ({type(exc).__name__})"
+    for kind in ("shm", "sem", "msg"):
+        try:
+            with open(f"/proc/sysvipc/{kind}", encoding="utf-8", errors="replace") as table:
+                if len(table.read().strip().splitlines()) > 1:
+                    return f"a System V IPC object ({kind}) was left"
+        except OSError:
+            pass
+    now = _own_state()
+    changed = [name for (name, was), (_, is_) in zip(started, now, strict=True) if was != is_]
+    if changed:
+        return "the zygote's " + ", ".join(changed) + " changed"
+    return None
 
 
 def _zygote(control_fd: int) -> int:
@@ -673,6 +769,7 @@ def _zygote(control_fd: int) -> int:
             sock.send(data)
 
     version = _np.__version__ if _np is not None else None
+    started = _own_state()
     answer({"status": "ready", "numpy": version, "pid": os.getpid()})
     preload = [name for name in _CFG.get("preload", "").split(",") if name]
     if preload and _CFG.get("preload_first") == "1":  # started ahead: nobody waits for a fork
@@ -713,6 +810,19 @@ def _zygote(control_fd: int) -> int:
                 pause = min(pause * 2, 0.01)
                 reap()
             answer({"status": "waited", "code": children.get(pid)})
+        elif op == "reset":
+            for pid, code in children.items():
+                if code is None:
+                    for kill in (os.killpg, os.kill):
+                        with contextlib.suppress(OSError):
+                            kill(pid, signal.SIGKILL)
+            for pid, code in children.items():
+                if code is None:
+                    with contextlib.suppress(ChildProcessError):
+                        os.waitpid(pid, 0)  # (SIGKILLed: it exits)
+            children.clear()
+            why = _leftovers(started)
+            answer({"status": "clean"} if why is None else {"status": "dirty", "why": why})
         else:
             answer({"status": "bad_request"})
     for pid, code in children.items():
