@@ -667,3 +667,56 @@ def test_without_namespaces_a_zygote_is_never_kept() -> None:
         assert fallback.reset() == (
             "no pid namespace: the processes a learner left cannot all be seen"
         )
+
+
+DAEMON = """
+import os, time
+def f():
+    pid = os.fork()
+    if pid == 0:
+        os.setsid()
+        if os.fork() == 0:
+            time.sleep(60)
+        os._exit(0)
+    os.waitpid(pid, 0)
+    return 1
+"""
+
+
+def test_a_daemon_swept_with_its_worker_leaves_the_zygote_fit(ns_zygote: Zygote) -> None:
+    """A learner's daemon (its own session, orphaned to the zygote, the sandbox's init) is
+    killed with its worker's cgroups and reaped by the zygote: the next learner may come.
+    Without cgroups nothing sweeps it, and the zygote says so."""
+    worker = load(ns_zygote, DAEMON)
+    assert worker.call([]).value == 1  # type: ignore[attr-defined]
+    worker.close()  # type: ignore[attr-defined]
+    why = ns_zygote.reset()
+    if ns_zygote.isolation.cgroups is not None:
+        assert why is None
+    else:
+        assert why == "1 process(es) of the last learner still running"
+
+
+def test_no_process_of_the_sandbox_can_be_traced_by_a_learner(ns_zygote: Zygote) -> None:
+    """The zygote is the sandbox's init: there is no bubblewrap init a learner's code could
+    ptrace (and so use to outlive its learner); the zygote and every worker are not
+    dumpable."""
+    other = load(ns_zygote, "import time\ndef f():\n    time.sleep(30)\n")
+    worker = load(
+        ns_zygote,
+        """
+        import ctypes, os
+        def f():
+            libc = ctypes.CDLL(None, use_errno=True)
+            found = []
+            for name in os.listdir("/proc"):
+                if name.isdigit() and int(name) != os.getpid():
+                    found.append(libc.ptrace(16, int(name), 0, 0))  # PTRACE_ATTACH
+            return [os.getppid(), found]
+        """,
+    )
+    zygote_pid, attached = worker.call([]).value  # type: ignore[attr-defined]
+    assert zygote_pid == 1
+    assert len(attached) >= 2 and set(attached) == {-1}, attached  # the zygote, the other
+    other.close()  # type: ignore[attr-defined]
+    worker.close()  # type: ignore[attr-defined]

@@ -368,10 +368,15 @@ def _interpreter() -> str:
     return os.path.abspath(sys.executable)
 
 
-def bwrap_command(bwrap: str, limits: Limits, program: list[str]) -> list[str]:
-    """The full bubblewrap command line running ``program`` (argv inside the sandbox)."""
+def bwrap_command(
+    bwrap: str, limits: Limits, program: list[str], *, as_pid_1: bool = False
+) -> list[str]:
+    """The full bubblewrap command line running ``program`` (argv inside the sandbox);
+    ``as_pid_1``: ``program`` is the sandbox's init (a zygote: it reaps orphans itself, and no
+    bubblewrap init, which the sandbox's processes could ptrace, shares the sandbox)."""
     cmd = [
         bwrap,
+        *(["--as-pid-1"] if as_pid_1 else []),
         "--unshare-all",
         "--unshare-user",
         "--uid", "65534",

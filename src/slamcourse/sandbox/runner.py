@@ -944,7 +944,8 @@ def _command(
     if isolation.level == "namespaces":
         assert isolation.bwrap is not None
         program = [python, "-I", "-B", SANDBOX_WORKER_PATH, *args]
-        return bwrap_command(isolation.bwrap, limits, program), {"PATH": "/usr/bin:/bin"}, "/"
+        cmd = bwrap_command(isolation.bwrap, limits, program, as_pid_1=what == "zygote")
+        return cmd, {"PATH": "/usr/bin:/bin"}, "/"
     res.tmpdir = tempfile.mkdtemp(prefix=f"slamcourse-{what}-")
     cmd = [python, "-I", "-B", str(WORKER_SCRIPT), *args]
     return cmd, worker_env(res.tmpdir), res.tmpdir
@@ -977,16 +978,19 @@ class Zygote:
 
     ::
 
-        with Zygote.spawn() as zygote:            # one per learner's submission
+        with Zygote.spawn() as zygote:            # one learner's submission at a time
             with zygote.worker(limits) as worker:  # a fresh process per exercise
                 worker.load(...); worker.call_many(...)
+            zygote.reset()                         # None: fit for the next learner
 
     A forked worker is a :class:`Worker` like a started one: a new process with its own
     pipes, resource limits (``limits``) and cgroups, its own session, not dumpable (no other
     process of the sandbox can ptrace it or read its memory), killed with the zygote. What it
     saves is the interpreter start and the numpy import (about 0.3 s each). Workers of one
     zygote share its namespaces (file system view, private ``/tmp``, pid namespace), so a
-    zygote must only ever serve ONE learner. Thread-safe.
+    zygote serves ONE learner at a time, and another only after :meth:`reset` has proven that
+    nothing of the last one is left (under namespaces, where the zygote is the sandbox's
+    init and sees every process in it). Thread-safe.
     """
 
     def __init__(self, *, limits: Limits, isolation: IsolationReport) -> None:

@@ -634,9 +634,14 @@ def main() -> int:
 # does (cgroups joined through the descriptors sent along, every resource limit set) and then
 # serves its own pipes, which are sent back. The zygote runs no learner code itself.
 #
+# Under namespaces the zygote is the sandbox's init (pid 1, ``bwrap --as-pid-1``): it reaps
+# orphans, no signal from inside the sandbox can kill or stop it, and no other process outside
+# the learner's reach lives there (bubblewrap's own init, which a learner's code could
+# ptrace, is not started).
+#
 # ``reset`` (asked only under namespaces, between two learners' submissions): kill and reap
 # every worker, then prove that nothing of the last learner is left that could reach the next
-# one: no process in the sandbox's pid namespace but bubblewrap's init (pid 1) and the zygote;
+# one: no process in the sandbox's pid namespace but the zygote;
 # ``/tmp``, the one writable file system, emptied; no System V IPC object; and none of the
 # zygote's own attributes that another process of the sandbox (same user) may change, and
 # that its workers would inherit, changed since it started (resource limits, nice value, CPU
@@ -702,18 +707,20 @@ def _wipe(path: str) -> None:
             os.unlink(entry.path)
 
 
-def _leftovers(started: list[tuple[str, Any]]) -> str | None:
+def _leftovers(started: list[tuple[str, Any]], reap: Any) -> str | None:
     """Why the sandbox is not as the zygote found it (None: it is); see ``reset`` above.
-    Called once every worker has been reaped."""
-    me = os.getpid()
+    Called once every worker has been reaped; ``reap`` reaps orphans."""
+    if os.getpid() != 1:
+        return "the zygote is not the sandbox's init (another process could outlive a learner)"
     pause = 0.001
     deadline = time.monotonic() + 2.0
-    while True:  # a killed process may still be exiting (bubblewrap's init reaps orphans)
+    while True:  # a killed process may still be exiting (the zygote, as init, reaps orphans)
+        reap()
         try:
             others = sorted(int(p) for p in os.listdir("/proc") if p.isdigit())
         except OSError as exc:
             return f"cannot list processes ({exc})"
-        others = [p for p in others if p not in (1, me)]
+        others = [p for p in others if p != 1]
         if not others:
             break
         if time.monotonic() > deadline:
@@ -753,13 +760,16 @@ def _zygote(control_fd: int) -> int:
     sock = socket.socket(fileno=control_fd)
     children: dict[int, int | None] = {}  # pid -> exit code once reaped
 
-    def reap() -> None:
-        for pid, code in list(children.items()):
-            if code is None:
-                with contextlib.suppress(ChildProcessError):
-                    done, status = os.waitpid(pid, os.WNOHANG)
-                    if done:
-                        children[pid] = os.waitstatus_to_exitcode(status)
+    def reap() -> None:  # its own workers, and (as the sandbox's init) any orphan
+        while True:
+            try:
+                pid, status = os.waitpid(-1, os.WNOHANG)
+            except ChildProcessError:
+                return
+            if pid == 0:
+                return
+            if pid in children:
+                children[pid] = os.waitstatus_to_exitcode(status)
 
     def answer(reply: dict[str, Any], fds: list[int] | None = None) -> None:
         data = json.dumps(reply).encode()
@@ -821,7 +831,7 @@ def _zygote(control_fd: int) -> int:
                     with contextlib.suppress(ChildProcessError):
                         os.waitpid(pid, 0)  # (SIGKILLed: it exits)
             children.clear()
-            why = _leftovers(started)
+            why = _leftovers(started, reap)
             answer({"status": "clean"} if why is None else {"status": "dirty", "why": why})
         else:
             answer({"status": "bad_request"})
