@@ -31,6 +31,10 @@ def rows(values):
 def write_reference(folder: Path, shift: int) -> ExerciseSpec:
     folder.mkdir(parents=True, exist_ok=True)
     (folder / "reference.py").write_text(textwrap.dedent(SOURCE.replace("{SHIFT}", str(shift))))
+    return spec_at(folder)
+
+
+def spec_at(folder: Path) -> ExerciseSpec:
     return ExerciseSpec(
         id="ch/ex",
         chapter="ch",
@@ -76,3 +80,32 @@ def test_a_changed_reference_module_is_called_again(tmp_path: Path) -> None:
     stat = (tmp_path / "ch" / "reference.py").stat()
     os.utime(tmp_path / "ch" / "reference.py", ns=(stat.st_atime_ns, stat.st_mtime_ns + 10**9))
     assert reference.call(spec, "answer", 1, {"n": 2}) == [2.0, 7]
+
+
+def _kept_elsewhere(folder: str) -> dict:
+    """What another process (a batch's pool) computes and hands over."""
+    return reference.kept_results(
+        spec_at(Path(folder)),
+        [("answer", 1, {"n": 2}), ("answer", 1, {"n": -1}), ("rows", 1, {"values": [1]})],
+    )
+
+
+def test_a_result_computed_in_another_process_is_adopted_for_the_same_file(
+    tmp_path: Path,
+) -> None:
+    """A batch computes the answers every learner shares once, in one process; the others
+    adopt them (keyed by the reference file, not by a process's module object). Failures and
+    calls with array-like arguments are not handed over."""
+    import multiprocessing
+
+    folder = tmp_path / "ch"
+    spec = write_reference(folder, shift=7)
+    with multiprocessing.get_context("spawn").Pool(1) as pool:
+        kept = pool.apply(_kept_elsewhere, (str(folder),))
+    assert list(kept.values()) == [[2.0, 7]]  # the failure and the list argument: not kept
+    reference.adopt_results(kept)
+    assert reference.call(spec, "answer", 1, {"n": 2}) == [2.0, 7]
+    assert calls(spec) == []  # adopted, not computed here
+    (folder / "reference.py").write_text(SOURCE.replace("{SHIFT}", "8"))  # another file now
+    os.utime(folder / "reference.py", ns=(1, 1))
+    assert reference.call(spec, "answer", 1, {"n": 2}) == [2.0, 8]

@@ -232,11 +232,35 @@ def _shared_tests(path: str | None, options: GradeOptions) -> SharedTests:
 
 def build_tests(course: Path | None, exercise_id: str, secret: str, runs: int) -> TestSet:
     """One exercise's test set for a batch (run in a grading process)."""
-    from slamcourse.course.loader import load_course
     from slamcourse.course.locate import course_root
 
-    spec = load_course(course_root(course)).exercise(exercise_id)
+    spec = _course(course_root(course)).exercise(exercise_id)
     return SharedTests(secret, runs).get(spec)
+
+
+def _same_for_everyone(course: Any, exercise_id: str) -> bool:
+    """A text exercise whose answer is the same for every learner: a reference, no drawn
+    parameters (e.g. a figure of a whole data set, which can take seconds to compute)."""
+    try:
+        spec = course.exercise(exercise_id)
+    except SlamcourseError:
+        return False
+    return spec.kind != "code" and spec.reference is not None and not spec.has_variants
+
+
+def build_answers(course: Path | None, exercise_id: str) -> dict[Any, Any]:
+    """The reference answer of a text exercise that is the same for every learner, computed
+    once for a batch (in a grading process) and adopted by every grading process with the test
+    sets. (Its misconceptions' values are computed by a process only when it meets a wrong
+    answer: a class of right answers needs none of them.)"""
+    from slamcourse.course import reference
+    from slamcourse.course.locate import course_root
+    from slamcourse.course.variants import variant
+
+    spec = _course(course_root(course)).exercise(exercise_id)
+    assert spec.reference is not None
+    params = dict(variant(spec, 0).params)
+    return reference.kept_results(spec, [(spec.reference, spec.reference_line, params)])
 
 
 # ------------------------------------------------------------------------------ one submission
@@ -573,9 +597,10 @@ def grade_all(
 ) -> list[SubmissionGrade]:
     """Grade ``paths`` (results in the order given); ``jobs`` > 1 grades in worker processes.
 
-    With several processes, each code exercise's test set is first built once, the exercises
-    spread over the processes, and handed to all of them; one process builds each set when it
-    first needs it and keeps it."""
+    With several processes, each code exercise's test set, and each text exercise's answer that
+    is the same for every learner, is first built once, the exercises spread over the
+    processes, and handed to all of them; one process builds each set (and computes each
+    answer) when it first needs it and keeps it."""
     if jobs < 1:
         raise UsageError("--jobs must be at least 1")
     preflight(options)
@@ -600,6 +625,11 @@ def grade_all(
     try:
         with ProcessPoolExecutor(max_workers=jobs, mp_context=context) as pool:
             shared = SharedTests(options.secret, options.hidden_runs)
+            answers = [  # first: one of them may be the longest task (a whole data set)
+                pool.submit(build_answers, root, ex)
+                for ex in course.exercise_ids
+                if _same_for_everyone(course, ex)
+            ]
             builds = {
                 pool.submit(build_tests, root, ex, options.secret, options.hidden_runs): ex
                 for ex in sorted(code_ids, key=lambda ex: _build_cost(course, ex), reverse=True)
@@ -607,6 +637,9 @@ def grade_all(
             for built in as_completed(builds):
                 with contextlib.suppress(Exception):  # left to each submission to report
                     shared.sets[builds[built]] = built.result()
+            for computed in as_completed(answers):
+                with contextlib.suppress(Exception):  # (recomputed where needed, and reported)
+                    shared.answers.update(computed.result())
             shared_path = scratch / "tests.pickle"
             shared.save(shared_path)
             futures = {

@@ -16,13 +16,17 @@ from typing import Any
 from slamcourse.course.model import ExerciseSpec
 from slamcourse.errors import CourseError, Problem
 
-_modules: dict[tuple[Path, int, int], ModuleType] = {}  # (never dropped: ids stay unique)
+ModuleKey = tuple[str, int, int]  # a reference.py's resolved path, mtime (ns) and size
+ResultKey = tuple[ModuleKey, str, str]  # its module, the function, the arguments' repr
+
+_modules: dict[ModuleKey, ModuleType] = {}  # (never dropped)
+_module_keys: dict[int, ModuleKey] = {}  # id(module) -> its key (ids stay unique: never dropped)
 _resolved: dict[Path, Path] = {}
 
 RESULTS_KEPT = 4096
 """Reference results kept for scalar arguments (:func:`call`): a text exercise's answer is
 computed to grade it and again to explain it, and a batch meets the same variants again."""
-_results: OrderedDict[tuple[int, str, str], Any] = OrderedDict()
+_results: OrderedDict[ResultKey, Any] = OrderedDict()
 _results_lock = threading.Lock()
 _SCALARS = frozenset({int, float, str, bool, type(None)})
 
@@ -34,9 +38,9 @@ def module_for(spec: ExerciseSpec) -> ModuleType:
         path = _resolved.setdefault(spec.reference_path, spec.reference_path.resolve())
     try:
         stat = path.stat()
-        key = (path, stat.st_mtime_ns, stat.st_size)
+        key = (str(path), stat.st_mtime_ns, stat.st_size)
     except OSError:
-        key = (path, 0, 0)
+        key = (str(path), 0, 0)
     if key in _modules:
         return _modules[key]
     rel = _rel(spec, spec.reference_path)
@@ -58,6 +62,7 @@ def module_for(spec: ExerciseSpec) -> ModuleType:
             )
         ) from None
     _modules[key] = module
+    _module_keys[id(module)] = key
     return module
 
 
@@ -123,15 +128,44 @@ def call(spec: ExerciseSpec, name: str, line: int, kwargs: dict[str, Any]) -> An
     return value
 
 
-def _result_key(
-    module: ModuleType, name: str, kwargs: dict[str, Any]
-) -> tuple[int, str, str] | None:
+def _result_key(module: ModuleType, name: str, kwargs: dict[str, Any]) -> ResultKey | None:
     """The key of a call whose arguments are all plain scalars (their reprs are exact: a float's
     is the shortest that reads back to the same bits), else None: not kept. The module is the
-    loaded ``reference.py`` (kept for the process's life, so its id is never reused)."""
+    loaded ``reference.py``, named by its file's path, mtime and size: the same in every
+    process that reads the same file (:func:`kept_results` hands results between them)."""
     if any(type(v) not in _SCALARS for v in kwargs.values()):
         return None
-    return (id(module), name, repr(sorted(kwargs.items())))
+    return (_module_keys[id(module)], name, repr(sorted(kwargs.items())))
+
+
+def kept_results(
+    spec: ExerciseSpec, calls: list[tuple[str, int, dict[str, Any]]]
+) -> dict[ResultKey, Any]:
+    """Make the ``calls`` (function name, line, arguments) of ``spec``'s reference and return
+    their results as kept (keyed so that :func:`adopt_results` in another process, reading the
+    same ``reference.py``, finds them): a batch computes the answers that are the same for
+    every learner once, not once per grading process. Failures are left out (the grading
+    process that needs the call reports them); so are calls that are never kept."""
+    out: dict[ResultKey, Any] = {}
+    for name, line, kwargs in calls:
+        try:
+            value = call(spec, name, line, kwargs)
+        except CourseError:
+            continue
+        key = _result_key(module_for(spec), name, kwargs)
+        if key is not None:
+            out[key] = value
+    return out
+
+
+def adopt_results(results: dict[ResultKey, Any]) -> None:
+    """Keep results another process computed (:func:`kept_results`) as if computed here."""
+    with _results_lock:
+        for key, value in results.items():
+            _results[key] = value
+            _results.move_to_end(key)
+        while len(_results) > RESULTS_KEPT:
+            _results.popitem(last=False)
 
 
 def _error_line(exc: BaseException, path: Path) -> int | None:

@@ -504,11 +504,14 @@ class SharedTests:
     """The test sets of one batch: each exercise's built once (inputs, hidden inputs from the
     instructor's ``secret``, reference outputs) and used for every submission. Thread-safe;
     :meth:`save` / :meth:`load` hand them to grading processes (a pickle of plain data, written
-    and read only by the grader itself)."""
+    and read only by the grader itself), with ``answers``: reference results that are the same
+    for every learner (:func:`~slamcourse.course.reference.kept_results`), which a grading
+    process adopts on :meth:`load`."""
 
     secret: str = ""
     runs: int = 1
     sets: dict[str, TestSet] = field(default_factory=dict)
+    answers: dict[Any, Any] = field(default_factory=dict)
     _lock: threading.Lock = field(default_factory=threading.Lock, repr=False)
 
     def get(self, spec: ExerciseSpec) -> TestSet:
@@ -521,9 +524,13 @@ class SharedTests:
             return found
 
     def save(self, path: Path) -> None:
-        path.write_bytes(pickle.dumps((self.secret, self.runs, self.sets)))
+        path.write_bytes(pickle.dumps((self.secret, self.runs, self.sets, self.answers)))
 
     @classmethod
     def load(cls, path: Path) -> SharedTests:
-        secret, runs, sets = pickle.loads(path.read_bytes())  # our own file, never a learner's
-        return cls(secret, runs, sets)
+        from slamcourse.course import reference
+
+        # our own file, never a learner's
+        secret, runs, sets, answers = pickle.loads(path.read_bytes())
+        reference.adopt_results(answers)
+        return cls(secret, runs, sets, answers)
