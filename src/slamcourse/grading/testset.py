@@ -102,6 +102,14 @@ class TestSet:
             cache[key] = encode_calls(calls)
         return cache[key]
 
+    def encode_chunks(self, signature: tuple[str, ...]) -> None:
+        """Encode every chunk's request body now (a batch does it once, where it builds the
+        set: the bodies travel with the set to every grading process, which would otherwise
+        each encode them again)."""
+        for start in range(0, len(self.cases), CHUNK):
+            chunk = self.cases[start : start + CHUNK]
+            self.encoded_chunk(start, signature, [[c.kwargs[n] for n in signature] for c in chunk])
+
     @property
     def visible(self) -> list[Case]:
         return [c for c in self.cases if not c.hidden]
