@@ -720,3 +720,41 @@ def test_no_process_of_the_sandbox_can_be_traced_by_a_learner(ns_zygote: Zygote)
     assert len(attached) >= 2 and set(attached) == {-1}, attached  # the zygote, the other
     other.close()  # type: ignore[attr-defined]
     worker.close()  # type: ignore[attr-defined]
+
+
+def test_builtins_patched_by_learner_code_that_runs_around_a_call_are_restored(
+    make_worker: MakeWorker,
+) -> None:
+    """Learner code runs besides the function itself where the worker pickles an argument the
+    call filled with the learner's own objects (for the in-place check) and where it flushes a
+    stream the learner replaced; what that code patches in ``builtins`` is undone before the
+    worker's own code goes on, so every reply is still the call's own."""
+    worker, loaded = make_worker(
+        """
+        import builtins, sys
+
+        class Sneaky:
+            def __reduce__(self):
+                builtins.memoryview = lambda data: memoryview(b"{}")
+                builtins.type = lambda x: int
+                return (int, (0,))
+
+        class Stream:
+            def write(self, text):
+                return len(text)
+            def flush(self):
+                builtins.memoryview = lambda data: memoryview(b"{}")
+
+        def f(xs, mode):
+            if mode == "fill":
+                xs.append(Sneaky())
+            elif mode == "stream":
+                sys.stdout = Stream()
+            return [len(xs), 0.5]
+        """
+    )
+    assert loaded.ok
+    results = worker.call_many([[[1, 2], "fill"], [[1], "none"], [[1], "stream"], [[], "none"]])
+    assert [r.status for r in results] == ["ok"] * 4, results
+    assert [r.value for r in results] == [[3, 0.5], [1, 0.5], [1, 0.5], [0, 0.5]]
+    assert results[0].mutated == (0,) and results[1].mutated == ()

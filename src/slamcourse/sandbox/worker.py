@@ -316,8 +316,8 @@ class Session:
     def send(self, frame: dict[str, Any], last: bool = True) -> None:
         """Write ``frame`` to ``resp``; ring the bell if it is the ``last`` of its request, or
         if the bell is due (see the module's docstring)."""
-        _flush_learner_output()
-        _restore_builtins()
+        if _flush_learner_output():  # (the learner's own stream objects ran: undo patches)
+            _restore_builtins()
         frame["dropped"] = _STDOUT.dropped + _STDERR.dropped
         frame["out"], frame["err"] = _STDOUT.passed, _STDERR.passed
         data = (_ENCODER.encode(frame) + "\n").encode()
@@ -435,8 +435,9 @@ class Session:
                 reply = {"status": "oversize", "size": None}
         if record is not None:
             changed = _changed(args, record)
-            if changed:
-                reply["mutated"] = changed
+            if changed:  # (only an argument changed can hold an object of the learner's, whose
+                reply["mutated"] = changed  # code pickling it may have run)
+                _restore_builtins()
         return reply
 
     def call_many(self, req: dict[str, Any]) -> None:
@@ -529,9 +530,10 @@ def _arity_problem(function: Any, count: int) -> list[str] | None:
     return None if fits else [_str(n) for n in names]
 
 
-def _flush_learner_output() -> None:
+def _flush_learner_output() -> bool:
     """Flush the learner's streams (sys.stdout and sys.stderr, which the learner may have
-    replaced, and the worker's own), each once."""
+    replaced, and the worker's own), each once; True when the learner had replaced one (its
+    own object's code ran)."""
     out: Any = getattr(sys, "stdout", None)
     err: Any = getattr(sys, "stderr", None)
     ours = out is _STDOUT and err is _STDERR
@@ -540,6 +542,7 @@ def _flush_learner_output() -> None:
             stream.flush()
         except BaseException:
             pass
+    return not ours
 
 
 _BUDGET = int(_CFG.get("out") or 1 << 20)
