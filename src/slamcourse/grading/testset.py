@@ -45,7 +45,7 @@ from slamcourse.sandbox import CallResult
 
 BOUNDARY_BASES = 12
 """Drawn inputs (after the examples) the boundary transforms may start from."""
-CHUNK = 32
+CHUNK = 64
 """Inputs sent to the sandbox in one request."""
 MAX_AGREED = 60
 """Inputs the learner got right that a misconception must get right too (examples and
