@@ -121,8 +121,10 @@ def make_class(
                 files[code_path(ex)] = source.encode()
                 answers.append(Answer(ex, 0, file=code_path(ex), attempts=1))
                 continue
-            if kind == "hostile":
-                text: str | None = "1/0 )(" if i % 2 else "x" * 20000
+            if kind == "hostile":  # garbage, and (every eighth) an answer far too long; the
+                # manifest itself stays under the grader's 2 MiB (a bigger one is rejected whole)
+                long = i % 2 == 0 and len(answers) % 8 == 0
+                text: str | None = "x" * 20000 if long else "1/0 )("
             else:
                 text = wrong_text(spec, v) if wrong else right_text(spec, v)
             if text is not None:

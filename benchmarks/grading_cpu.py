@@ -3,13 +3,13 @@
 A "learner" is what the batch grader does for one complete submission's code: a new forking
 pool (its sandboxed zygote: kept from the learner before, where the tree keeps it), every code
 exercise of the bundled course checked with the course's own solution against the batch's test
-set (built once, before the rounds), the pool closed. Each round runs in a process of its own, alternately with this tree's ``src`` and with
-``--base``'s (a temporary checkout of that revision; the course itself is always this tree's,
-so only the engine differs), and is accounted for whole: the grader, its zygote, bubblewrap,
-the workers and the kernel's work for them, read from a ``cpuacct`` cgroup (cgroup v1) or the
-``cpu.stat`` of a cgroup v2 the process may create. Without either, the machine's busy time
-from ``/proc/stat`` is used instead (noisier: it counts everything running) and the report
-says so.
+set (built once, before the rounds), the pool closed. Each round runs in a process of its
+own, alternately with this tree's ``src`` and with ``--base``'s (a temporary checkout of that
+revision; the course itself is always this tree's, so only the engine differs), and is
+accounted for whole: the grader, its zygote, bubblewrap, the workers and the kernel's work for
+them, read from a ``cpuacct`` cgroup (cgroup v1) or the ``cpu.stat`` of a cgroup v2 the process
+may create. Without either, the machine's busy time from ``/proc/stat`` is used instead
+(noisier: it counts everything running) and the report says so.
 
     python benchmarks/grading_cpu.py [--base HEAD~1] [--rounds 6] [--pairs 2]
 
