@@ -340,10 +340,19 @@ def test_limits_are_per_worker(zygote: Zygote) -> None:
     assert other.call([]).value == 7  # type: ignore[attr-defined]
 
 
-def test_the_pool_replaces_a_zygote_the_learner_killed() -> None:
+@pytest.mark.parametrize("level", ["namespaces", "rlimits"])
+def test_the_pool_replaces_a_zygote_the_learner_killed(
+    level: str, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Without namespaces a learner's code can kill its zygote: the next exercise gets a new
+    one. Under namespaces the zygote is the sandbox's init, which no signal from inside the
+    sandbox kills: the same zygote forks the next exercise's worker."""
+    require_level(level)
+    monkeypatch.setenv("SLAMCOURSE_SANDBOX", level)
     pool = WorkerPool(fork=True)
     try:
         worker = pool.take(Limits())
+        first = pool._zygote.result()  # type: ignore[union-attr]
         loaded = worker.load(
             "import os, signal\ndef f():\n    os.kill(os.getppid(), signal.SIGKILL)\n", "f.py", "f"
         )
@@ -354,6 +363,8 @@ def test_the_pool_replaces_a_zygote_the_learner_killed() -> None:
         again = pool.take(Limits())
         assert again.load("def f():\n    return 1\n", "f.py", "f").ok
         assert again.call([]).value == 1
+        now = pool._zygote.result()  # type: ignore[union-attr]
+        assert (now is first and first.alive) if level == "namespaces" else now is not first
         again.close()
     finally:
         pool.close()
