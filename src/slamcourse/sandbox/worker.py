@@ -681,6 +681,7 @@ def _own_state() -> list[tuple[str, Any]]:
         ("scheduling policy", lambda: os.sched_getscheduler(0)),
         ("scheduling priority", lambda: os.sched_getparam(0).sched_priority),
         ("/tmp's mode or owner", lambda: (lambda st: (st.st_mode, st.st_uid))(os.stat("/tmp"))),
+        ("mode or owner of a directory of /tmp's binds", lambda: _modes(_sandbox_paths("/tmp")[1])),
     )
     for name, probe in probes:
         try:
@@ -695,16 +696,59 @@ def _own_state() -> list[tuple[str, Any]]:
     return state
 
 
-def _wipe(path: str) -> None:
-    """Remove everything under ``path`` (never following a symbolic link); raises OSError or
-    RecursionError when something cannot go."""
+def _mounts_under(root: str) -> set[str]:
+    """The mount points below ``root`` (the sandbox's binds of files that live under the host's
+    /tmp, e.g. a virtual environment there), from /proc/self/mountinfo."""
+    found = set()
+    with contextlib.suppress(OSError), open("/proc/self/mountinfo", encoding="utf-8") as info:
+        for line in info:
+            fields = line.split(" ")
+            if len(fields) > 4 and fields[4].startswith(root.rstrip("/") + "/"):
+                point = fields[4]
+                for code, char in (("\\040", " "), ("\\011", "\t"), ("\\012", "\n")):
+                    point = point.replace(code, char)
+                found.add(point.replace("\\134", "\\"))
+    return found
+
+
+def _sandbox_paths(root: str) -> tuple[set[str], set[str]]:
+    """What below ``root`` is the sandbox's own and must stay: its mount points, and those and
+    the directories that lead to them."""
+    mounts = _mounts_under(root)
+    keep = set(mounts)
+    for point in mounts:
+        parent = os.path.dirname(point)
+        while parent.startswith(root.rstrip("/") + "/"):
+            keep.add(parent)
+            parent = os.path.dirname(parent)
+    return mounts, keep
+
+
+def _modes(paths: set[str]) -> list[tuple[str, int, int]]:
+    out = []
+    for path in sorted(paths):
+        try:
+            st = os.lstat(path)
+            out.append((path, st.st_mode, st.st_uid))
+        except OSError:
+            out.append((path, -1, -1))  # (moved or removed: changed)
+    return out
+
+
+def _wipe(path: str, mounts: set[str], keep: set[str]) -> None:
+    """Remove everything under ``path`` but ``keep`` (never following a symbolic link, never
+    entering a mount point); raises OSError or RecursionError when something cannot go."""
     with os.scandir(path) as entries:
         found = list(entries)
     for entry in found:
+        if entry.path in keep:
+            if entry.path not in mounts and entry.is_dir(follow_symlinks=False):
+                _wipe(entry.path, mounts, keep)  # (a directory on the way to a mount point)
+            continue
         if entry.is_dir(follow_symlinks=False):
             with contextlib.suppress(OSError):
                 os.chmod(entry.path, 0o700)  # (a directory its creator made unreadable)
-            _wipe(entry.path)
+            _wipe(entry.path, mounts, keep)
             os.rmdir(entry.path)
         else:
             os.unlink(entry.path)
@@ -731,9 +775,11 @@ def _leftovers(started: list[tuple[str, Any]], reap: Any) -> str | None:
         time.sleep(pause)
         pause = min(2 * pause, 0.05)
     try:
-        _wipe("/tmp")
-        if os.listdir("/tmp"):
-            return "/tmp could not be emptied"
+        mounts, keep = _sandbox_paths("/tmp")
+        _wipe("/tmp", mounts, keep)
+        with os.scandir("/tmp") as entries:
+            if {e.path for e in entries} - keep:
+                return "/tmp could not be emptied"
     except (OSError, RecursionError) as exc:
         return f"/tmp could not be emptied ({type(exc).__name__})"
     for kind in ("shm", "sem", "msg"):
