@@ -81,9 +81,8 @@ def _keep(zygote: Zygote, require_isolation: bool) -> None:
     else close it."""
     if zygote.alive and zygote.reset() is None:
         with _AHEAD_LOCK:
-            if require_isolation not in _KEPT:
-                _lifelong_spawner()  # (registers the closing at exit)
-                _KEPT[require_isolation] = zygote
+            if require_isolation not in _KEPT:  # (a reusing pool's zygote came from the
+                _KEPT[require_isolation] = zygote  # lifelong spawner: closed at exit)
                 return
     zygote.close()
 

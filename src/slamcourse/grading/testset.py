@@ -107,8 +107,9 @@ class TestSet:
         set: the bodies travel with the set to every grading process, which would otherwise
         each encode them again)."""
         for start in range(0, len(self.cases), CHUNK):
-            chunk = self.cases[start : start + CHUNK]
-            self.encoded_chunk(start, signature, [[c.kwargs[n] for n in signature] for c in chunk])
+            self.encoded_chunk(
+                start, signature, _arguments(self.cases[start : start + CHUNK], signature)
+            )
 
     @property
     def visible(self) -> list[Case]:
@@ -330,6 +331,11 @@ class Calls(list[list[Any]]):
     enough: Callable[[int, CallResult], bool] | None = None
 
 
+def _arguments(chunk: Sequence[Case], signature: Sequence[str]) -> list[list[Any]]:
+    """Each case's argument list, in the signature's order (what one request sends)."""
+    return [[case.kwargs[name] for name in signature] for case in chunk]
+
+
 def run_cases(
     tests: TestSet,
     call_many: CallMany,
@@ -363,7 +369,7 @@ def run_cases(
     whole = cases is None
     for start in range(0, len(todo), CHUNK):
         chunk = todo[start : start + CHUNK]
-        calls = Calls([case.kwargs[name] for name in signature] for case in chunk)
+        calls = Calls(_arguments(chunk, signature))
         if whole:  # the same chunks for every learner: encoded for the sandbox once
             calls.encoded = tests.encoded_chunk(start, tuple(signature), calls)
         judged: dict[int, Failure | None] = {}

@@ -663,9 +663,10 @@ PR_SET_PDEATHSIG = 1
 PR_SET_DUMPABLE = 4
 
 
-def _own_state() -> list[tuple[str, Any]]:
+def _own_state(binds: set[str]) -> list[tuple[str, Any]]:
     """The zygote's attributes that a process of the sandbox could change from outside (see
-    ``reset`` above) and its workers would inherit, each with its name."""
+    ``reset`` above) and its workers would inherit, each with its name; ``binds``: the paths
+    below /tmp that are the sandbox's own (:func:`_sandbox_paths`)."""
     state: list[tuple[str, Any]] = []
     limits: dict[int, str] = {}  # (RLIMIT_OFILE is RLIMIT_NOFILE)
     for name in sorted(n for n in dir(resource) if n.startswith("RLIMIT_")):
@@ -681,7 +682,7 @@ def _own_state() -> list[tuple[str, Any]]:
         ("scheduling policy", lambda: os.sched_getscheduler(0)),
         ("scheduling priority", lambda: os.sched_getparam(0).sched_priority),
         ("/tmp's mode or owner", lambda: (lambda st: (st.st_mode, st.st_uid))(os.stat("/tmp"))),
-        ("mode or owner of a directory of /tmp's binds", lambda: _modes(_sandbox_paths("/tmp")[1])),
+        ("mode or owner of a directory of /tmp's binds", lambda: _modes(binds)),
     )
     for name, probe in probes:
         try:
@@ -754,9 +755,13 @@ def _wipe(path: str, mounts: set[str], keep: set[str]) -> None:
             os.unlink(entry.path)
 
 
-def _leftovers(started: list[tuple[str, Any]], reap: Any) -> str | None:
+def _leftovers(
+    started: list[tuple[str, Any]], reap: Any, mounts: set[str], keep: set[str]
+) -> str | None:
     """Why the sandbox is not as the zygote found it (None: it is); see ``reset`` above.
-    Called once every worker has been reaped; ``reap`` reaps orphans."""
+    Called once every worker has been reaped; ``reap`` reaps orphans; ``mounts`` and ``keep``
+    as :func:`_sandbox_paths` found them at the zygote's start (no process of the sandbox may
+    mount or unmount anything)."""
     if os.getpid() != 1:
         return "the zygote is not the sandbox's init (another process could outlive a learner)"
     pause = 0.001
@@ -775,7 +780,6 @@ def _leftovers(started: list[tuple[str, Any]], reap: Any) -> str | None:
         time.sleep(pause)
         pause = min(2 * pause, 0.05)
     try:
-        mounts, keep = _sandbox_paths("/tmp")
         _wipe("/tmp", mounts, keep)
         with os.scandir("/tmp") as entries:
             if {e.path for e in entries} - keep:
@@ -789,7 +793,7 @@ def _leftovers(started: list[tuple[str, Any]], reap: Any) -> str | None:
                     return f"a System V IPC object ({kind}) was left"
         except OSError:
             pass
-    now = _own_state()
+    now = _own_state(keep)
     changed = [name for (name, was), (_, is_) in zip(started, now, strict=True) if was != is_]
     if changed:
         return "the zygote's " + ", ".join(changed) + " changed"
@@ -820,6 +824,11 @@ def _zygote(control_fd: int) -> int:
             if pid in children:
                 children[pid] = os.waitstatus_to_exitcode(status)
 
+    def kill(pid: int) -> None:  # a worker and its process group
+        for signal_to in (os.killpg, os.kill):
+            with contextlib.suppress(OSError):
+                signal_to(pid, signal.SIGKILL)
+
     def answer(reply: dict[str, Any], fds: list[int] | None = None) -> None:
         data = json.dumps(reply).encode()
         if fds:
@@ -828,7 +837,8 @@ def _zygote(control_fd: int) -> int:
             sock.send(data)
 
     version = _np.__version__ if _np is not None else None
-    started = _own_state()
+    mounts, binds = _sandbox_paths("/tmp")
+    started = _own_state(binds)
     answer({"status": "ready", "numpy": version, "pid": os.getpid()})
     preload = [name for name in _CFG.get("preload", "").split(",") if name]
     if preload and _CFG.get("preload_first") == "1":  # started ahead: nobody waits for a fork
@@ -856,9 +866,7 @@ def _zygote(control_fd: int) -> int:
         elif op == "kill":
             pid = req.get("pid")
             if type(pid) is int and pid in children and children[pid] is None:
-                for kill in (os.killpg, os.kill):
-                    with contextlib.suppress(OSError):
-                        kill(pid, signal.SIGKILL)
+                kill(pid)
             answer({"status": "killed"})
         elif op == "wait":
             pid = req.get("pid")
@@ -872,24 +880,17 @@ def _zygote(control_fd: int) -> int:
         elif op == "reset":
             for pid, code in children.items():
                 if code is None:
-                    for kill in (os.killpg, os.kill):
-                        with contextlib.suppress(OSError):
-                            kill(pid, signal.SIGKILL)
-            for pid, code in children.items():
-                if code is None:
+                    kill(pid)
                     with contextlib.suppress(ChildProcessError):
                         os.waitpid(pid, 0)  # (SIGKILLed: it exits)
             children.clear()
-            why = _leftovers(started, reap)
+            why = _leftovers(started, reap, mounts, binds)
             answer({"status": "clean"} if why is None else {"status": "dirty", "why": why})
         else:
             answer({"status": "bad_request"})
     for pid, code in children.items():
         if code is None:
-            with contextlib.suppress(OSError):
-                os.killpg(pid, signal.SIGKILL)
-            with contextlib.suppress(OSError):
-                os.kill(pid, signal.SIGKILL)
+            kill(pid)
     return 0
 
 
