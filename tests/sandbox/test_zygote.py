@@ -404,6 +404,47 @@ def test_a_worker_forked_ahead_and_killed_meanwhile_is_replaced() -> None:
         pool.close()
 
 
+def test_a_worker_forked_ahead_serves_an_exercise_whose_time_budgets_differ() -> None:
+    """The worker forked ahead with one exercise's limits serves the next exercise when only
+    the grader's side of their limits differs (its time budgets: the next exercise's apply),
+    and is replaced by a worker forked for it when the process's own limits differ."""
+    pool = WorkerPool(fork=True)
+    source = (
+        "import resource, time\n"
+        "def f(t):\n"
+        "    time.sleep(t)\n"
+        "    return resource.getrlimit(resource.RLIMIT_CPU)[0]\n"
+    )
+
+    def forked_ahead() -> None:
+        pool._forked.result()  # type: ignore[union-attr]
+
+    try:
+        first = pool.take(Limits())
+        forked_ahead()
+        zygote = pool._zygote.result()  # type: ignore[union-attr]
+        forks = []
+        real_fork = zygote._fork
+        zygote._fork = lambda *a: forks.append(a) or real_fork(*a)  # type: ignore[method-assign]
+        first.close()
+        second = pool.take(Limits(call_seconds=0.5, total_seconds=30))
+        forked_ahead()
+        assert len(forks) == 1  # the next one ahead: the worker forked ahead serves it
+        assert second.limits.call_seconds == 0.5
+        assert second.load(source, "f.py", "f").ok
+        assert second.call([0]).value == Limits().cpu_seconds
+        assert second.call([1.5]).status == "timeout"  # (its own budget, not the default 5 s)
+        second.close()
+        third = pool.take(Limits(cpu_seconds=7))
+        forked_ahead()
+        assert len(forks) == 3  # one for it (RLIMIT_CPU), then the next one ahead
+        assert third.load(source, "f.py", "f").ok
+        assert third.call([0]).value == 7
+        third.close()
+    finally:
+        pool.close()
+
+
 def test_the_caller_can_stop_a_batch_once_it_has_enough(make_worker: MakeWorker) -> None:
     """The validator needs one failure per file: the worker is stopped mid-batch (a slow
     input later in the batch is never computed), and says it was stopped."""
@@ -713,6 +754,71 @@ def test_a_daemon_swept_with_its_worker_leaves_the_zygote_fit(ns_zygote: Zygote)
         assert why is None
     else:
         assert why == "1 process(es) of the last learner still running"
+
+
+def test_closing_a_worker_waits_for_nothing_and_its_daemon_goes_with_the_sweep(
+    zygote: Zygote,
+) -> None:
+    """Closing a forked worker waits for no answer of the zygote (which forks the next worker
+    meanwhile): the worker is SIGKILLed by a request the zygote does not answer; a daemon it
+    started out of its process group is killed by the background sweep of its cgroups."""
+    import threading
+
+    from slamcourse.sandbox import runner
+
+    if zygote.isolation.cgroups is None:
+        pytest.skip("no delegated cgroups here: nothing sweeps a daemon")
+    worker = load(zygote, DAEMON)
+    assert worker.call([]).value == 1  # type: ignore[attr-defined]
+    in_sandbox = worker._res.proc.pid  # type: ignore[attr-defined]
+    pids = worker._res.cgroups.pids()  # type: ignore[attr-defined]
+    own = [pid for pid in pids if _pid_in_sandbox(pid) == in_sandbox]
+    daemon = [pid for pid in pids if pid not in own]
+    assert len(own) == 1 and len(daemon) == 1
+    asked = []
+    real_ask = zygote._ask
+    zygote._ask = lambda *a, **k: asked.append(a) or real_ask(*a, **k)  # type: ignore[method-assign]
+    if runner._REAPER is None:
+        runner._REAPER = runner.ThreadPoolExecutor(1, thread_name_prefix="sandbox-reap")
+    gate = threading.Event()
+    runner._REAPER.submit(gate.wait, 10.0)  # the sweep queues behind this
+    try:
+        worker.close()  # type: ignore[attr-defined]
+        assert asked == []
+        assert _dies(own[0])
+        assert _running(daemon[0])  # (out of the worker's process group: the sweep's)
+    finally:
+        gate.set()
+        zygote._ask = real_ask  # type: ignore[method-assign]
+    assert _dies(daemon[0])
+
+
+def _pid_in_sandbox(pid: int) -> int | None:
+    """``pid``'s number in its innermost pid namespace (``NSpid``), None if it is gone."""
+    try:
+        with open(f"/proc/{pid}/status") as status:
+            for line in status:
+                if line.startswith("NSpid:"):
+                    return int(line.split()[-1])
+    except OSError:
+        pass
+    return None
+
+
+def _dies(pid: int, within: float = 5.0) -> bool:
+    deadline = time.monotonic() + within
+    while time.monotonic() < deadline and _running(pid):
+        time.sleep(0.01)
+    return not _running(pid)
+
+
+def _running(pid: int) -> bool:
+    """True while ``pid`` is a live process (a zombie, dead but not yet reaped, is not)."""
+    try:
+        with open(f"/proc/{pid}/stat") as stat:
+            return stat.read().rsplit(")", 1)[1].split()[0] != "Z"
+    except OSError:
+        return False
 
 
 def test_no_process_of_the_sandbox_can_be_traced_by_a_learner(ns_zygote: Zygote) -> None:

@@ -13,7 +13,6 @@ import atexit
 import contextlib
 import threading
 from concurrent.futures import Future, ThreadPoolExecutor
-from typing import Any
 
 from slamcourse.errors import SandboxError
 from slamcourse.sandbox import Limits, Worker, Zygote
@@ -152,7 +151,7 @@ class WorkerPool:
         self.fork = fork
         self.reuse = reuse and fork
         self._zygote: Future[Zygote] | None = None
-        self._forked: Future[tuple[Zygote, Any, Worker] | None] | None = None
+        self._forked: Future[tuple[Zygote, Worker] | None] | None = None
         self._lock = threading.Lock()
         self._spare: Future[Worker] | None = None
         self._spawner: ThreadPoolExecutor | None = None
@@ -224,9 +223,11 @@ class WorkerPool:
 
     def _take_forked(self, limits: Limits | None) -> Worker:
         """A worker forked by this pool's zygote; the next one is forked at once, in the
-        background, with the same limits (exercises mostly share theirs), so that joining its
-        cgroups (which can wait for a kernel grace period of several milliseconds) and its
-        first frame overlap the exercise graded meanwhile."""
+        background, with the same limits, so that joining its cgroups (which can wait for a
+        kernel grace period of several milliseconds) and its first frame overlap the exercise
+        graded meanwhile. It serves the next exercise whose limits differ only in what the
+        grader keeps (time budgets: :meth:`~slamcourse.sandbox.Worker.adopt_limits`), as
+        most exercises' do; otherwise it is closed and a worker forked for that exercise."""
         with self._lock:
             pending = self._zygote_later()
             spare, self._forked = self._forked, None
@@ -235,9 +236,9 @@ class WorkerPool:
         if spare is not None:
             found = spare.result()
             if found is not None:
-                owner, spare_limits, candidate = found
-                if owner is zygote and spare_limits == limits and candidate.fresh:
-                    worker = candidate
+                owner, candidate = found
+                if owner is zygote and candidate.adopt_limits(limits or Limits()):
+                    worker = candidate  # (the same process, whatever the time budgets)
                 else:
                     candidate.close()
         if worker is None:
@@ -248,13 +249,13 @@ class WorkerPool:
         return worker
 
     @staticmethod
-    def _fork_ahead(zygote: Zygote, limits: Limits | None) -> tuple[Zygote, Any, Worker] | None:
+    def _fork_ahead(zygote: Zygote, limits: Limits | None) -> tuple[Zygote, Worker] | None:
         try:
             worker = zygote.worker(limits)
             worker.wait_ready()
         except SandboxError:
             return None  # the next take forks its own
-        return zygote, limits, worker
+        return zygote, worker
 
     def close(self) -> None:
         with self._lock:
@@ -262,7 +263,7 @@ class WorkerPool:
         if forked is not None:
             found = forked.result()
             if found is not None:
-                found[2].close()
+                found[1].close()
         with self._lock:
             zygote, self._zygote = self._zygote, None
         if zygote is not None:

@@ -211,16 +211,18 @@ class _Resources:
         ``closing``: the worker is being closed (see below)."""
         proc = self.proc
         if isinstance(proc, _Forked):  # its pid is the zygote's to signal, not ours
-            proc.kill()  # SIGKILL to its process group, sent by the time the zygote answers
-            if self.cgroups is None:
-                return  # the zygote reaps it: waiting for it to unmap its memory (~2 ms) would
-                # only delay the next exercise
-            if closing:  # waiting for its exit, killing what is left in its cgroups (anything
-                # it started that left its process group) and removing them: in the
-                # background, so that the next exercise does not wait for it either
-                cgroups, self.cgroups = self.cgroups, None
-                proc.zygote._reap_later(proc, cgroups)
-            else:  # (a timeout or crash: its end is reported, so it is awaited)
+            if closing:  # SIGKILL to its process group, asked of the zygote without waiting
+                # for an answer (it forks the next worker meanwhile; it reaps this one at its
+                # next request: waiting for it to unmap its memory, ~2 ms, would only delay
+                # the next exercise); what is left in its cgroups (anything it started that
+                # left its process group) is killed and the cgroups removed in the background
+                proc.signal()
+                if self.cgroups is not None:
+                    cgroups, self.cgroups = self.cgroups, None
+                    proc.zygote._reap_later(cgroups)
+                return
+            proc.kill()  # (a timeout or crash: its end is reported, so it is awaited)
+            if self.cgroups is not None:
                 proc.wait(timeout=2.0)  # (its cgroups can be removed once it has exited)
                 self.cgroups.kill()
             return
@@ -256,6 +258,19 @@ class _Resources:
                 self.cgroups.remove(wait=2.0)
             if self.tmpdir is not None:
                 shutil.rmtree(self.tmpdir, ignore_errors=True)
+
+
+PROCESS_LIMITS = (
+    "cpu_seconds",
+    "memory_bytes",
+    "processes",
+    "file_bytes",
+    "open_files",
+    "frame_bytes",
+    "muted_after",
+)
+"""The :class:`Limits` a worker process is started with (its resource limits, cgroup, frame
+size and muted output); the others are kept by the grader's side only."""
 
 
 class Worker:
@@ -414,6 +429,21 @@ class Worker:
             and self._loaded is None
             and not any(_readable(fd) for fd in (self._resp_r, self._out_r, self._err_r))
         )
+
+    def adopt_limits(self, limits: Limits) -> bool:
+        """Have a fresh worker keep ``limits`` from now on instead of the ones it was started
+        with, when they differ only on the grader's side (time budgets, output kept per
+        request, flood and start bounds): True. False, and nothing changed, when the process
+        itself would differ (its resource limits and cgroup, its largest frame, its muted
+        output: set when it started) or it is not fresh."""
+        if not self.fresh or any(
+            getattr(limits, name) != getattr(self._limits, name) for name in PROCESS_LIMITS
+        ):
+            return False
+        used = self._limits.total_seconds - self._budget  # (its start counts)
+        self._limits = limits
+        self._budget = limits.total_seconds - used
+        return True
 
     def wait_ready(self) -> None:
         """Wait until the worker has started (its ``ready`` frame); :meth:`load` does this
@@ -972,6 +1002,11 @@ class _Forked:
         if self.returncode is None:
             self.zygote._kill(self.pid)
 
+    def signal(self) -> None:
+        """SIGKILL it and its process group, without waiting for the zygote's answer."""
+        if self.returncode is None:
+            self.zygote._tell({"op": "kill", "pid": self.pid, "answer": False})
+
 
 class Zygote:
     """A sandboxed interpreter that has imported numpy once and forks fresh workers.
@@ -1187,17 +1222,17 @@ class Zygote:
             raise SandboxError("the sandbox zygote sent an unreadable reply")
         return decoded, got
 
-    def _reap_later(self, proc: _Forked, cgroups: WorkerCgroups) -> None:
-        """Wait for a killed worker's exit, then kill what is left in its cgroups and remove
-        them, on a background thread; :meth:`close` waits for it."""
+    def _reap_later(self, cgroups: WorkerCgroups) -> None:
+        """Kill whatever is left in a closed worker's cgroups, wait until they are empty and
+        remove them, on a background thread; :meth:`close` and :meth:`reset` wait for it."""
         global _REAPER
         try:
             with _REAPER_LOCK:
                 if _REAPER is None:
                     _REAPER = ThreadPoolExecutor(max_workers=1, thread_name_prefix="sandbox-reap")
-                done = _REAPER.submit(_sweep, proc, cgroups)
+                done = _REAPER.submit(_sweep, cgroups)
         except RuntimeError:  # the interpreter is shutting down: no new threads; sweep now
-            _sweep(proc, cgroups)
+            _sweep(cgroups)
             return
         with self._lock:
             self._reaping = [f for f in self._reaping if not f.done()]
@@ -1216,6 +1251,15 @@ class Zygote:
         with contextlib.suppress(SandboxError):
             self._ask({"op": "kill", "pid": pid}, ())
 
+    def _tell(self, request: dict[str, Any]) -> None:
+        """Send a request the zygote does not answer (no lock: nothing is read back, and the
+        zygote reads requests in the order they were sent)."""
+        sock = self._sock
+        if sock is None or self._dead:
+            return
+        with contextlib.suppress(OSError):
+            sock.send(json.dumps(request).encode())
+
     def _wait(self, pid: int, timeout: float) -> int | None:
         try:
             reply, _fds = self._ask({"op": "wait", "pid": pid, "timeout": timeout}, ())
@@ -1229,9 +1273,9 @@ _REAPER: ThreadPoolExecutor | None = None  # sweeps closed forked workers' cgrou
 _REAPER_LOCK = threading.Lock()
 
 
-def _sweep(proc: _Forked, cgroups: WorkerCgroups) -> None:
-    proc.wait(timeout=2.0)  # (a cgroup can be removed once its processes have exited)
-    cgroups.kill()
+def _sweep(cgroups: WorkerCgroups) -> None:
+    cgroups.kill()  # (waits until every process in them has exited: a zombie is not listed
+    # and does not keep a cgroup from being removed, so the zygote's reaping is not awaited)
     cgroups.close_fds()
     cgroups.remove(wait=2.0)
 

@@ -867,7 +867,8 @@ def _zygote(control_fd: int) -> int:
             pid = req.get("pid")
             if type(pid) is int and pid in children and children[pid] is None:
                 kill(pid)
-            answer({"status": "killed"})
+            if req.get("answer") is not False:
+                answer({"status": "killed"})
         elif op == "wait":
             pid = req.get("pid")
             deadline = time.monotonic() + float(req.get("timeout", 0))
