@@ -291,3 +291,33 @@ def test_processes_take_the_largest_submissions_first(tmp_path: Path) -> None:
         archive("two-code-big.zip", {"submission.json": 10, "code/a.py": 900, "code/b.py": 10}),
     ]
     assert _largest_first(paths) == [3, 5, 1, 2, 0, 4]
+
+
+def _blas_threads() -> set[int]:
+    from threadpoolctl import threadpool_info
+
+    return {i["num_threads"] for i in threadpool_info() if i["user_api"] == "blas"}
+
+
+def test_a_batch_computes_with_one_blas_thread_and_gives_them_back(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Every grading process computes with one BLAS thread (N processes for N cores; results
+    independent of --jobs); a batch graded in this process gives its threads back."""
+    import numpy  # noqa: F401 (its BLAS loaded)
+
+    from slamcourse.batch import grade
+
+    before = _blas_threads()
+    seen: list[set[int]] = []
+
+    def probe(path: Path, *args: Any, **kwargs: Any) -> SubmissionGrade:
+        seen.append(_blas_threads())
+        return SubmissionGrade(path.name, None, "error", error="probe")
+
+    monkeypatch.setattr(grade, "grade_submission", probe)
+    grade_all([tmp_path / "a.zip", tmp_path / "b.zip"], GradeOptions(course=FIXTURE_COURSE))
+    assert seen == [{1}, {1}]
+    assert _blas_threads() == before
+    with grade.one_blas_thread():  # (what each process of --jobs N runs first, for good)
+        assert _blas_threads() == {1}

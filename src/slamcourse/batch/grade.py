@@ -460,6 +460,19 @@ def _settle_heap() -> None:
     gc.freeze()
 
 
+def one_blas_thread() -> Any:
+    """Have this grading process compute with one BLAS thread (the references, the judges'
+    numerics, the shared answers) until the returned context ends (or for good, in a grading
+    process of the pool). ``--jobs N`` runs N grading processes for N cores: a BLAS thread
+    pool in each would oversubscribe them (its spinning threads cost more than they save: a
+    test set's build took twice as long), and a result must not depend on ``--jobs`` (a sum
+    split over threads can differ in its last bits with their number). The learners' code
+    runs with one BLAS thread too (the sandbox's environment)."""
+    from threadpoolctl import threadpool_limits
+
+    return threadpool_limits(limits=1, user_api="blas")
+
+
 def grade_submission(
     path: Path, options: GradeOptions, shared_path: str | None = None, ahead: bool = False
 ) -> SubmissionGrade:
@@ -606,6 +619,16 @@ def grade_all(
     if jobs < 1:
         raise UsageError("--jobs must be at least 1")
     preflight(options)
+    with one_blas_thread():
+        return _grade_all(paths, options, jobs, on_done)
+
+
+def _grade_all(
+    paths: Sequence[Path],
+    options: GradeOptions,
+    jobs: int,
+    on_done: Callable[[int, int, SubmissionGrade], None] | None,
+) -> list[SubmissionGrade]:
     results: list[SubmissionGrade | None] = [None] * len(paths)
     total = len(paths)
     if jobs == 1 or total <= 1:
@@ -625,7 +648,9 @@ def grade_all(
     context = multiprocessing.get_context("forkserver")
     scratch = Path(tempfile.mkdtemp(prefix="slamcourse-batch-"))
     try:
-        with ProcessPoolExecutor(max_workers=jobs, mp_context=context) as pool:
+        with ProcessPoolExecutor(
+            max_workers=jobs, mp_context=context, initializer=one_blas_thread
+        ) as pool:
             shared = SharedTests(options.secret, options.hidden_runs)
             answers = [  # first: one of them may be the longest task (a whole data set)
                 pool.submit(build_answers, root, ex)
