@@ -308,16 +308,20 @@ def test_a_batch_computes_with_one_blas_thread_and_gives_them_back(
 
     from slamcourse.batch import grade
 
+    import os
+
+    monkeypatch.delenv("OPENBLAS_NUM_THREADS", raising=False)
     before = _blas_threads()
-    seen: list[set[int]] = []
+    seen: list[tuple[set[int], str | None]] = []
 
     def probe(path: Path, *args: Any, **kwargs: Any) -> SubmissionGrade:
-        seen.append(_blas_threads())
+        seen.append((_blas_threads(), os.environ.get("OPENBLAS_NUM_THREADS")))
         return SubmissionGrade(path.name, None, "error", error="probe")
 
     monkeypatch.setattr(grade, "grade_submission", probe)
     grade_all([tmp_path / "a.zip", tmp_path / "b.zip"], GradeOptions(course=FIXTURE_COURSE))
-    assert seen == [{1}, {1}]
+    assert seen == [({1}, "1"), ({1}, "1")]  # (and a BLAS library loaded meanwhile: one)
     assert _blas_threads() == before
+    assert "OPENBLAS_NUM_THREADS" not in os.environ
     with grade.one_blas_thread():  # (what each process of --jobs N runs first, for good)
         assert _blas_threads() == {1}

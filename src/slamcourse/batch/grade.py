@@ -22,12 +22,13 @@ from __future__ import annotations
 
 import contextlib
 import gc
+import os
 import re
 import shutil
 import tempfile
 import time
 import zipfile
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -45,6 +46,7 @@ from slamcourse.batch.submission import (
 )
 from slamcourse.errors import SlamcourseError, UsageError
 from slamcourse.grading.testset import SharedTests, TestSet
+from slamcourse.sandbox.isolation import ONE_BLAS_THREAD
 
 if TYPE_CHECKING:
     from slamcourse.engine import Engine
@@ -460,17 +462,34 @@ def _settle_heap() -> None:
     gc.freeze()
 
 
-def one_blas_thread() -> Any:
-    """Have this grading process compute with one BLAS thread (the references, the judges'
-    numerics, the shared answers) until the returned context ends (or for good, in a grading
-    process of the pool). ``--jobs N`` runs N grading processes for N cores: a BLAS thread
-    pool in each would oversubscribe them (its spinning threads cost more than they save: a
-    test set's build took twice as long), and a result must not depend on ``--jobs`` (a sum
-    split over threads can differ in its last bits with their number). The learners' code
-    runs with one BLAS thread too (the sandbox's environment)."""
+@contextlib.contextmanager
+def one_blas_thread() -> Iterator[None]:
+    """Have this process compute with one BLAS thread (the references, the judges' numerics,
+    the shared answers) while the context lasts: BLAS libraries already loaded are limited
+    (threadpoolctl), those loaded meanwhile start with one thread (their environment
+    variables). ``--jobs N`` runs N grading processes for N cores: a BLAS thread pool in each
+    would oversubscribe them (its spinning threads cost more than they save: a test set's
+    build took twice as long), and a result must not depend on ``--jobs`` (a sum split over
+    threads can differ in its last bits with their number). The learners' code runs with one
+    BLAS thread too (the sandbox's environment)."""
     from threadpoolctl import threadpool_limits
 
-    return threadpool_limits(limits=1, user_api="blas")
+    saved = {name: os.environ.get(name) for name in ONE_BLAS_THREAD}
+    os.environ.update(dict.fromkeys(ONE_BLAS_THREAD, "1"))
+    try:
+        with threadpool_limits(limits=1, user_api="blas"):
+            yield
+    finally:
+        for name, value in saved.items():
+            if value is None:
+                os.environ.pop(name, None)
+            else:
+                os.environ[name] = value
+
+
+def _grading_process() -> None:
+    """The first thing each grading process of ``--jobs N`` does: one BLAS thread, for good."""
+    one_blas_thread().__enter__()
 
 
 def grade_submission(
@@ -649,7 +668,7 @@ def _grade_all(
     scratch = Path(tempfile.mkdtemp(prefix="slamcourse-batch-"))
     try:
         with ProcessPoolExecutor(
-            max_workers=jobs, mp_context=context, initializer=one_blas_thread
+            max_workers=jobs, mp_context=context, initializer=_grading_process
         ) as pool:
             shared = SharedTests(options.secret, options.hidden_runs)
             answers = [  # first: one of them may be the longest task (a whole data set)

@@ -40,6 +40,10 @@ Level = Literal["namespaces", "rlimits"]
 #: (fail when unavailable) or ``rlimits`` (force the fallback, e.g. for tests).
 ENV_VAR = "SLAMCOURSE_SANDBOX"
 
+ONE_BLAS_THREAD = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
+"""Environment variables that, set to 1, have a BLAS library loaded afterwards use one thread
+(the learners' code; the batch grader's processes)."""
+
 WORKER_SCRIPT = Path(__file__).with_name("worker.py")
 SANDBOX_WORKER_PATH = "/sandbox/worker.py"
 CGROUP_PREFIX = "slamcourse-"
@@ -389,9 +393,7 @@ def bwrap_command(
         "--clearenv",
         "--setenv", "PATH", "/usr/bin:/bin",
         "--setenv", "HOME", "/tmp",
-        "--setenv", "OPENBLAS_NUM_THREADS", "1",
-        "--setenv", "OMP_NUM_THREADS", "1",
-        "--setenv", "MKL_NUM_THREADS", "1",
+        *(arg for name in ONE_BLAS_THREAD for arg in ("--setenv", name, "1")),
         "--proc", "/proc",
         "--dev", "/dev",
         # First, so that binds of things that live under the host's /tmp stay visible.
@@ -437,13 +439,7 @@ def bwrap_command(
 
 def worker_env(home: str) -> dict[str, str]:
     """The complete environment of a worker started without namespaces."""
-    return {
-        "PATH": "/usr/bin:/bin",
-        "HOME": home,
-        "OPENBLAS_NUM_THREADS": "1",
-        "OMP_NUM_THREADS": "1",
-        "MKL_NUM_THREADS": "1",
-    }
+    return {"PATH": "/usr/bin:/bin", "HOME": home, **dict.fromkeys(ONE_BLAS_THREAD, "1")}
 
 
 def _bwrap_path() -> str | None:
