@@ -304,11 +304,11 @@ def test_a_batch_computes_with_one_blas_thread_and_gives_them_back(
 ) -> None:
     """Every grading process computes with one BLAS thread (N processes for N cores; results
     independent of --jobs); a batch graded in this process gives its threads back."""
+    import os
+
     import numpy  # noqa: F401 (its BLAS loaded)
 
     from slamcourse.batch import grade
-
-    import os
 
     monkeypatch.delenv("OPENBLAS_NUM_THREADS", raising=False)
     before = _blas_threads()

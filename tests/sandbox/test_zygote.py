@@ -718,6 +718,33 @@ def test_a_pool_whose_zygote_cannot_be_reset_gives_the_next_learner_a_new_one(
         pool_module._close_ahead()
 
 
+def test_a_zygote_is_started_ahead_only_once_one_could_not_be_kept(
+    ns_level: str, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A batch process starts no zygote ahead while it keeps its learners' zygotes (one
+    started for nothing costs a sandbox, an interpreter, numpy and scipy); once a learner's
+    could not be reset, the next learner's is started ahead."""
+    from slamcourse.grading import pool as pool_module
+
+    monkeypatch.setattr(pool_module, "_LAST_KEPT", {})
+    needed = lambda: pool_module.zygote_needed_ahead(require_isolation=True)  # noqa: E731
+    assert not needed()  # the first learner of a process
+    for source, kept in (
+        ("def f():\n    return 1\n", True),
+        ("import os\ndef f():\n    os.chmod('/tmp', 0o500)\n    return 1\n", False),
+        ("def f():\n    return 1\n", True),
+    ):
+        pool = pool_module.WorkerPool(fork=True, reuse=True, require_isolation=True)
+        try:
+            worker = pool.take(Limits())
+            assert worker.load(source, "f.py", "f").ok and worker.call([]).value == 1
+            worker.close()
+        finally:
+            pool.close()
+        assert needed() is not kept
+    pool_module._close_ahead()
+
+
 def test_without_namespaces_a_zygote_is_never_kept() -> None:
     """Without a pid namespace the zygote cannot see every process a learner left."""
     with Zygote.spawn(force="rlimits") as fallback:

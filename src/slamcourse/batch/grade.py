@@ -499,8 +499,10 @@ def grade_submission(
     the submission contains (its problems become ``status: error``). ``shared_path``: the
     batch's test sets (:func:`grade_all` builds them once); without it they are built here as
     needed and kept for the next submission graded in this process. ``ahead``: another
-    submission may follow in this process: its sandbox zygote is started while this one is
-    graded (:func:`~slamcourse.grading.pool.start_zygote_ahead`)."""
+    submission may follow in this process: if it will need a sandbox zygote of its own (this
+    process could not keep its last learner's:
+    :func:`~slamcourse.grading.pool.zygote_needed_ahead`), it is started while this one is
+    graded."""
     from slamcourse.course.locate import course_root
     from slamcourse.engine import Engine
     from slamcourse.settings import Settings
@@ -531,9 +533,10 @@ def grade_submission(
             course=_course(root),
         ) as engine:
             if ahead:  # (after this submission took the zygote started for it)
-                from slamcourse.grading.pool import start_zygote_ahead
+                from slamcourse.grading.pool import start_zygote_ahead, zygote_needed_ahead
 
-                start_zygote_ahead(require_isolation=options.require_isolation)
+                if zygote_needed_ahead(require_isolation=options.require_isolation):
+                    start_zygote_ahead(require_isolation=options.require_isolation)
             sub = _own_variants(sub, engine)
             warnings = [*sub.notes, *_check_claims(sub, engine, root, name)]
             given = {a.exercise: a for a in sub.manifest.answers}

@@ -25,6 +25,8 @@ _AHEAD_LOCK = threading.Lock()
 _AHEAD: dict[bool, Future[Zygote]] = {}  # by require_isolation: a zygote nobody has used yet
 _KEPT: dict[bool, Zygote] = {}  # by require_isolation: a zygote reset after one learner
 _AHEAD_SPAWNER: ThreadPoolExecutor | None = None  # lives as long as the process (see below)
+_LAST_KEPT: dict[bool, bool] = {}  # by require_isolation: whether the last learner's zygote was
+# kept for the next (reset clean), in this process
 
 
 def _lifelong_spawner() -> ThreadPoolExecutor:
@@ -56,6 +58,16 @@ def start_zygote_ahead(*, require_isolation: bool) -> None:
         )
 
 
+def zygote_needed_ahead(*, require_isolation: bool) -> bool:
+    """Whether the next learner of this process will need a zygote started ahead: not while
+    zygotes are kept from one learner to the next (the first learner starts its own, its text
+    answers are graded meanwhile, and it is kept), only once a learner's could not be reset or
+    none can be kept (without namespaces). A zygote started ahead for nothing costs ~0.4 CPU-s
+    (a sandbox, an interpreter, numpy and scipy), which other grading processes could use."""
+    with _AHEAD_LOCK:
+        return not _LAST_KEPT.get(require_isolation, True)
+
+
 def _close_ahead() -> None:
     """At exit: close a zygote started ahead that no submission took (the last submissions of
     a batch had no code, or every learner's zygote could be kept for the next), and the one
@@ -80,9 +92,13 @@ def _keep(zygote: Zygote, require_isolation: bool) -> None:
     else close it."""
     if zygote.alive and zygote.reset() is None:
         with _AHEAD_LOCK:
+            _LAST_KEPT[require_isolation] = True
             if require_isolation not in _KEPT:  # (a reusing pool's zygote came from the
                 _KEPT[require_isolation] = zygote  # lifelong spawner: closed at exit)
                 return
+    else:
+        with _AHEAD_LOCK:
+            _LAST_KEPT[require_isolation] = False
     zygote.close()
 
 
