@@ -305,6 +305,8 @@ def test_a_batch_computes_with_one_blas_thread_and_gives_them_back(
     """Every grading process computes with one BLAS thread (N processes for N cores; results
     independent of --jobs); a batch graded in this process gives its threads back."""
     import os
+    import subprocess
+    import sys
 
     import numpy  # noqa: F401 (its BLAS loaded)
 
@@ -323,5 +325,19 @@ def test_a_batch_computes_with_one_blas_thread_and_gives_them_back(
     assert seen == [({1}, "1"), ({1}, "1")]  # (and a BLAS library loaded meanwhile: one)
     assert _blas_threads() == before
     assert "OPENBLAS_NUM_THREADS" not in os.environ
-    with grade.one_blas_thread():  # (what each process of --jobs N runs first, for good)
-        assert _blas_threads() == {1}
+    # what each process of --jobs N runs first, for good (also for scipy, loaded after it)
+    probe_process = (
+        "import numpy, os\n"
+        "from threadpoolctl import threadpool_info\n"
+        "from slamcourse.batch.grade import _grading_process\n"
+        "_grading_process()\n"
+        "import gc; gc.collect()\n"
+        "import scipy.linalg\n"
+        "print(sorted({i['num_threads'] for i in threadpool_info() if i['user_api'] == 'blas'}),"
+        " len(threadpool_info()), os.environ['OPENBLAS_NUM_THREADS'])\n"
+    )
+    env = {k: v for k, v in os.environ.items() if k != "OPENBLAS_NUM_THREADS"}
+    done = subprocess.run(
+        [sys.executable, "-c", probe_process], env=env, capture_output=True, text=True
+    )
+    assert done.stdout.split() == ["[1]", "2", "1"], done.stderr

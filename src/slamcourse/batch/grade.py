@@ -46,7 +46,6 @@ from slamcourse.batch.submission import (
 )
 from slamcourse.errors import SlamcourseError, UsageError
 from slamcourse.grading.testset import SharedTests, TestSet
-from slamcourse.sandbox.isolation import ONE_BLAS_THREAD
 
 if TYPE_CHECKING:
     from slamcourse.engine import Engine
@@ -462,34 +461,47 @@ def _settle_heap() -> None:
     gc.freeze()
 
 
-@contextlib.contextmanager
-def one_blas_thread() -> Iterator[None]:
+def _limit_blas() -> Callable[[], None]:
     """Have this process compute with one BLAS thread (the references, the judges' numerics,
-    the shared answers) while the context lasts: BLAS libraries already loaded are limited
-    (threadpoolctl), those loaded meanwhile start with one thread (their environment
-    variables). ``--jobs N`` runs N grading processes for N cores: a BLAS thread pool in each
+    the shared answers): BLAS libraries already loaded are limited (threadpoolctl), those
+    loaded from now on start with one thread (their environment variables). Returns what
+    undoes it. ``--jobs N`` runs N grading processes for N cores: a BLAS thread pool in each
     would oversubscribe them (its spinning threads cost more than they save: a test set's
     build took twice as long), and a result must not depend on ``--jobs`` (a sum split over
     threads can differ in its last bits with their number). The learners' code runs with one
     BLAS thread too (the sandbox's environment)."""
     from threadpoolctl import threadpool_limits
 
+    from slamcourse.sandbox.isolation import ONE_BLAS_THREAD
+
     saved = {name: os.environ.get(name) for name in ONE_BLAS_THREAD}
     os.environ.update(dict.fromkeys(ONE_BLAS_THREAD, "1"))
-    try:
-        with threadpool_limits(limits=1, user_api="blas"):
-            yield
-    finally:
+    limiter = threadpool_limits(limits=1, user_api="blas")
+
+    def undo() -> None:
+        limiter.restore_original_limits()
         for name, value in saved.items():
             if value is None:
                 os.environ.pop(name, None)
             else:
                 os.environ[name] = value
 
+    return undo
+
+
+@contextlib.contextmanager
+def one_blas_thread() -> Iterator[None]:
+    """One BLAS thread in this process while the context lasts (:func:`_limit_blas`)."""
+    undo = _limit_blas()
+    try:
+        yield
+    finally:
+        undo()
+
 
 def _grading_process() -> None:
     """The first thing each grading process of ``--jobs N`` does: one BLAS thread, for good."""
-    one_blas_thread().__enter__()
+    _limit_blas()
 
 
 def grade_submission(

@@ -90,15 +90,12 @@ def _keep(zygote: Zygote, require_isolation: bool) -> None:
     """After a learner's pool closes: keep its zygote for the next learner if it can be reset
     (:meth:`~slamcourse.sandbox.Zygote.reset`: nothing of this learner left in its sandbox),
     else close it."""
-    if zygote.alive and zygote.reset() is None:
-        with _AHEAD_LOCK:
-            _LAST_KEPT[require_isolation] = True
-            if require_isolation not in _KEPT:  # (a reusing pool's zygote came from the
-                _KEPT[require_isolation] = zygote  # lifelong spawner: closed at exit)
-                return
-    else:
-        with _AHEAD_LOCK:
-            _LAST_KEPT[require_isolation] = False
+    kept = zygote.alive and zygote.reset() is None
+    with _AHEAD_LOCK:
+        _LAST_KEPT[require_isolation] = kept
+        if kept and require_isolation not in _KEPT:  # (a reusing pool's zygote came from the
+            _KEPT[require_isolation] = zygote  # lifelong spawner: closed at exit)
+            return
     zygote.close()
 
 

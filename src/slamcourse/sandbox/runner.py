@@ -260,17 +260,19 @@ class _Resources:
                 shutil.rmtree(self.tmpdir, ignore_errors=True)
 
 
-PROCESS_LIMITS = (
-    "cpu_seconds",
-    "memory_bytes",
-    "processes",
-    "file_bytes",
-    "open_files",
-    "frame_bytes",
-    "muted_after",
-)
-"""The :class:`Limits` a worker process is started with (its resource limits, cgroup, frame
-size and muted output); the others are kept by the grader's side only."""
+def _process_config(limits: Limits) -> dict[str, int]:
+    """The :class:`Limits` a worker process is started with, as ``worker.py`` reads them (its
+    resource limits, the cgroup's ``pids.max``, its largest frame, its muted output); the
+    others are kept by the grader's side only."""
+    return {
+        "as": limits.memory_bytes,
+        "cpu": limits.cpu_seconds,
+        "fsize": limits.file_bytes,
+        "nofile": limits.open_files,
+        "nproc": limits.processes,
+        "frame": limits.frame_bytes,
+        "out": limits.muted_after,
+    }
 
 
 class Worker:
@@ -339,13 +341,7 @@ class Worker:
                 f"req={req_r}",
                 f"resp={resp_w}",
                 f"bell={bell_w}",
-                f"as={limits.memory_bytes}",
-                f"cpu={limits.cpu_seconds}",
-                f"fsize={limits.file_bytes}",
-                f"nofile={limits.open_files}",
-                f"nproc={limits.processes}",
-                f"frame={limits.frame_bytes}",
-                f"out={limits.muted_after}",
+                *(f"{key}={value}" for key, value in _process_config(limits).items()),
                 "cg=" + ",".join(str(fd) for fd in cg_fds),
             ]
             cmd, env, cwd = _command(self._isolation, limits, res, worker_args, "worker")
@@ -382,17 +378,8 @@ class Worker:
             if self._isolation.cgroups is not None:
                 res.cgroups = WorkerCgroups.create(self._isolation.cgroups, limits)
             cg_fds = res.cgroups.fds if res.cgroups is not None else []
-            cfg = {
-                "as": limits.memory_bytes,
-                "cpu": limits.cpu_seconds,
-                "fsize": limits.file_bytes,
-                "nofile": limits.open_files,
-                "nproc": limits.processes,
-                "frame": limits.frame_bytes,
-                "out": limits.muted_after,
-            }
             self._spawned_at = time.monotonic()
-            pid, fds = zygote._fork(cfg, cg_fds)
+            pid, fds = zygote._fork(_process_config(limits), cg_fds)
         except BaseException:
             self._res.close()
             raise
@@ -436,9 +423,7 @@ class Worker:
         request, flood and start bounds): True. False, and nothing changed, when the process
         itself would differ (its resource limits and cgroup, its largest frame, its muted
         output: set when it started) or it is not fresh."""
-        if not self.fresh or any(
-            getattr(limits, name) != getattr(self._limits, name) for name in PROCESS_LIMITS
-        ):
+        if not self.fresh or _process_config(limits) != _process_config(self._limits):
             return False
         used = self._limits.total_seconds - self._budget  # (its start counts)
         self._limits = limits
