@@ -5,10 +5,16 @@ Builds a class against the bundled course as its learners would hand it in
 solutions and correct variants, partial learners answering about half with some shipped
 mutants, hostile learners whose code floods, hangs, exits, forks or raises), then in one run:
 
-1. grades the whole class with ``slamcourse grade --jobs 1`` and ``--jobs 2`` (the speed-up);
+1. grades the whole class with ``slamcourse grade --jobs 1`` and ``--jobs 2`` (the speed-up),
+   each run's CPU-seconds (all its processes: grader, sandboxes, workers; see ``Meter``), and
+   what that CPU allows: two cores cannot do a run's CPU-seconds in less than half of them, so
+   ``--jobs 2`` is at most ``2 × t1 / CPU2`` times faster than ``--jobs 1`` took;
 2. reports, per complete submission: seconds (median), and the grader's overhead: the
    submission's wall time minus the time spent inside the learner's own calls;
-3. extrapolates ``--jobs 2`` to 500 complete submissions.
+3. extrapolates ``--jobs 2`` to 500 complete submissions;
+4. measures, before grading, what two cores of this machine give two processes of pure
+   Python work at the time (a virtual machine's cores are seldom two whole cores): the
+   speed-up no ``--jobs 2`` run can exceed here, whatever it does.
 
     python benchmarks/batch.py [--count 50] [--partial 0.1] [--hostile 0.1]
 
@@ -30,19 +36,44 @@ import time
 from pathlib import Path
 
 from _class import make_class
-from _common import BIN, REPO, environment
+from _common import BIN, REPO, Meter, environment
 
 
-def grade(paths: list[Path], jobs: int, env: dict[str, str]) -> tuple[float, Path]:
+def grade(
+    paths: list[Path], jobs: int, env: dict[str, str], meter: Meter
+) -> tuple[float, float, Path]:
+    """Wall seconds, CPU-seconds and the results folder of one ``slamcourse grade`` run."""
     out = Path(tempfile.mkdtemp(prefix="slambatch-out-"))
     cmd = [str(BIN / "slamcourse"), "grade", *map(str, paths), "--jobs", str(jobs),
            "--out", str(out), "--secret", "benchmark-secret"]  # fmt: skip
-    start = time.perf_counter()
+    used, start = meter.read(), time.perf_counter()
     done = subprocess.run(cmd, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
-    elapsed = time.perf_counter() - start
+    elapsed, cpu = time.perf_counter() - start, meter.read() - used
     if done.returncode != 0:
         raise SystemExit(f"grade failed ({done.returncode}): {done.stderr.decode()[-2000:]}")
-    return elapsed, out
+    return elapsed, cpu, out
+
+
+_SPIN = "n = 0\nfor i in range({count}):\n    n += len(str(i)) + (i & 7)\n"
+
+
+def machine_speedup(count: int = 6_000_000, rounds: int = 3) -> tuple[float, float]:
+    """(speed-up, seconds alone) of two processes running the same pure-Python loop at once
+    against one alone (median of ``rounds``, alternated): 2.0 on two idle whole cores."""
+    cmd = [sys.executable, "-c", _SPIN.format(count=count)]
+    alone, ratios = [], []
+    for _ in range(rounds):
+        start = time.perf_counter()
+        subprocess.run(cmd, check=True)
+        one = time.perf_counter() - start
+        start = time.perf_counter()
+        both = [subprocess.Popen(cmd) for _ in range(2)]
+        for proc in both:
+            proc.wait()
+        two = time.perf_counter() - start
+        alone.append(one)
+        ratios.append(2 * one / two)
+    return statistics.median(ratios), statistics.median(alone)
 
 
 def results(out: Path) -> dict[str, dict]:
@@ -67,8 +98,15 @@ def main() -> None:
           f"submissions (built in {time.perf_counter() - started:.0f} s); load average "
           f"{os.getloadavg()[0]:.2f} on {os.cpu_count()} cores")  # fmt: skip
 
-    t1, out1 = grade(paths, 1, env)
-    t2, out2 = grade(paths, 2, env)
+    machine, spin = machine_speedup()
+    print(f"this machine now: two processes of pure Python work finish {machine:.2f}× faster "
+          f"than one ({spin:.1f} s alone): no --jobs 2 run here can do better")  # fmt: skip
+    meter = Meter()
+    try:
+        t1, cpu1, out1 = grade(paths, 1, env, meter)
+        t2, cpu2, out2 = grade(paths, 2, env, meter)
+    finally:
+        meter.close()
     one, two = results(out1), results(out2)
     for name, data in one.items():
         other = two[name]
@@ -93,9 +131,12 @@ def main() -> None:
         f"{e['exercise']} {e['seconds']:.2f} s" for e in slowest))  # fmt: skip
     speedup = t1 / t2
     print("the whole class:")
-    print(f"  --jobs 1  {t1:7.1f} s  {len(paths) / t1:6.2f} submissions/s")
-    print(f"  --jobs 2  {t2:7.1f} s  {len(paths) / t2:6.2f} submissions/s")
+    for jobs, t, cpu in ((1, t1, cpu1), (2, t2, cpu2)):
+        print(f"  --jobs {jobs}  {t:7.1f} s  {len(paths) / t:6.2f} submissions/s  "
+              f"{cpu:7.1f} CPU-s  {cpu / t:4.2f} cores busy")  # fmt: skip
     print(f"  speed-up  {speedup:.2f}×   (goal ≥ 1.8×)")
+    print(f"  at most   {2 * t1 / cpu2:.2f}×   on 2 cores for this CPU: --jobs 1 keeps "
+          f"{cpu1 / t1:.2f} cores busy itself; CPU from {meter.kind}")  # fmt: skip
     per_complete = statistics.median(seconds) / speedup
     print(f"500 complete submissions at --jobs 2, extrapolated: {500 * per_complete / 60:.1f} min "
           f"(goal ≤ 10 min); load average now {os.getloadavg()[0]:.2f}")  # fmt: skip

@@ -20,7 +20,6 @@ Nothing is asserted: the figures are for notes and issues, measured in one run.
 from __future__ import annotations
 
 import argparse
-import os
 import shutil
 import statistics
 import subprocess
@@ -29,47 +28,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from _common import REPO, environment
-
-CGROUPS = (  # (where a new cgroup may be made, the file that holds its CPU time)
-    (Path("/sys/fs/cgroup/cpuacct"), "cpuacct.usage"),  # cgroup v1
-    (Path("/sys/fs/cgroup"), "cpu.stat"),  # cgroup v2
-    (Path("/sys/fs/cgroup/unified"), "cpu.stat"),  # cgroup v2 beside v1 (hybrid)
-)
-
-
-class Meter:
-    """CPU-seconds used by this process and its descendants since it joined the meter."""
-
-    def __init__(self) -> None:
-        name = f"slambench-cpu-{os.getpid()}"
-        self.kind = "/proc/stat (whole machine)"
-        self.path: Path | None = None
-        self.file = ""
-        for root, file in CGROUPS:
-            path = root / name
-            try:
-                path.mkdir()
-            except OSError:
-                continue
-            try:
-                (path / "cgroup.procs").write_text(str(os.getpid()))
-                (path / file).read_text()
-            except OSError:
-                path.rmdir()
-                continue
-            self.path, self.file, self.kind = path, file, f"{path / file}"
-            break
-
-    def read(self) -> float:
-        if self.path is None:
-            fields = [int(v) for v in Path("/proc/stat").read_text().split("\n")[0].split()[1:]]
-            return (sum(fields) - fields[3] - fields[4]) / os.sysconf("SC_CLK_TCK")
-        text = (self.path / self.file).read_text()
-        if self.file == "cpuacct.usage":
-            return int(text) / 1e9
-        usage = dict(line.split() for line in text.splitlines())
-        return int(usage["usage_usec"]) / 1e6
+from _common import REPO, Meter, environment
 
 
 def inner(rounds: int) -> None:
