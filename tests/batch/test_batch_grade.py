@@ -12,6 +12,7 @@ import pytest
 from slamcourse.batch.grade import (
     GradeOptions,
     SubmissionGrade,
+    build_answers,
     grade_all,
     grade_submission,
     shard,
@@ -341,3 +342,19 @@ def test_a_batch_computes_with_one_blas_thread_and_gives_them_back(
         [sys.executable, "-c", probe_process], env=env, capture_output=True, text=True
     )
     assert done.stdout.split() == ["[1]", "2", "1"], done.stderr
+
+
+def test_a_shared_answer_is_built_with_its_misconceptions_values() -> None:
+    """What grading an answer may compute is computed once for a whole batch, in one process:
+    the reference's value and, where the kind computes them from the variant's parameters, its
+    misconceptions' (a grading process that adopts them computes neither for a wrong answer).
+    An expression's reference and misconceptions are evaluated at the formula's sampled points
+    (arrays, which are never kept): nothing to share."""
+    kept = build_answers(FIXTURE_COURSE, "basics/count")  # n = 3 (the canonical variant)
+    assert sorted((name, value) for (_file, name, _args), value in kept.items()) == [
+        ("count", 9),
+        ("count_forgot_pose", 6),
+    ]
+    kept = build_answers(FIXTURE_COURSE, "basics/offset")
+    assert [name for _file, name, _args in kept] == ["offset", "offset_swapped"]
+    assert build_answers(FIXTURE_COURSE, "basics/slope") == {}

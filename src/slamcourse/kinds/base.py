@@ -20,6 +20,7 @@ class Kind(ABC):
     keys: ClassVar[dict[str, bool]] = {}  # kind-specific YAML keys -> required?
     reference_required: ClassVar[bool] = True
     misconception_key: ClassVar[str | None] = "compute"
+    misconceptions_from_params: ClassVar[bool] = False  # (misconception_value computes them)
 
     # ---- loading
     def reference_optional(self, raw: LineDict) -> bool:
@@ -78,6 +79,23 @@ class Kind(ABC):
         """The expected input form as data: ``{"type": <kind>, ...}`` with the shape, units,
         options, items or listing a face needs to render an input (see docs/architecture.md)."""
         return {"type": self.name}
+
+    # ---- sharing
+    def reference_calls(
+        self, spec: ExerciseSpec, variant: Variant
+    ) -> list[tuple[str, int, dict[str, Any]]]:
+        """The ``reference.py`` calls (function, line, arguments) that grading an answer to
+        ``variant`` may make, the answer's first: a batch makes those of an answer that is the
+        same for every learner once, for all its grading processes (kept results:
+        :func:`~slamcourse.course.reference.kept_results`). The reference's, and its
+        misconceptions' where this kind computes them from the variant's parameters alone."""
+        if spec.reference is None:
+            return []
+        params = dict(variant.params)
+        calls = [(spec.reference, spec.reference_line, params)]
+        if self.misconceptions_from_params:
+            calls += [(m.compute, m.line, params) for m in spec.misconceptions if m.compute]
+        return calls
 
     # ---- validation
     def self_test(self, spec: ExerciseSpec, variant: Variant) -> list[Problem]:

@@ -99,6 +99,13 @@ class ExpressionKind(Kind):
         values = np.broadcast_to(np.asarray(raw, dtype=float), (spec.options.points,))
         return values
 
+    def reference_calls(
+        self, spec: ExerciseSpec, variant: Variant
+    ) -> list[tuple[str, int, dict[str, Any]]]:
+        """None a batch could share: the reference and the misconceptions are evaluated at the
+        sampled points (arrays, never kept)."""
+        return []
+
     def expected(self, spec: ExerciseSpec, variant: Variant) -> Any:
         assert spec.reference is not None
         return self._values(

@@ -102,6 +102,7 @@ class NumberKind(Kind):
     """A single number; optional ``exact`` integers and ``angle`` comparison modulo 2π."""
 
     name: ClassVar[str] = "number"
+    misconceptions_from_params = True
     keys: ClassVar[dict[str, bool]] = {"exact": False, "angle": False, "units": False}
 
     def parse(self, spec: ExerciseSpec, raw: LineDict, check: Checker) -> NumericOptions:
@@ -235,6 +236,7 @@ class VectorKind(Kind):
     """A vector of numbers, compared entry by entry; ``angle`` marks entries compared mod 2π."""
 
     name: ClassVar[str] = "vector"
+    misconceptions_from_params = True
     ndim: ClassVar[int] = 1
     keys: ClassVar[dict[str, bool]] = {
         "exact": False,
