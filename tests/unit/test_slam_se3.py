@@ -178,6 +178,16 @@ def test_sparse_step_equals_a_dense_solve() -> None:
     delta = np.zeros(6 * n)
     delta[6:] = np.linalg.solve(h[6:, 6:], -g[6:])
     assert np.allclose(se3.gauss_newton_step(x, graph), x @ se3.se3_exp(delta.reshape(n, 6)))
+    # the same step with the unknowns in the minimum-degree order (a large graph's), and with
+    # another pose held fixed: the order's indices skip the anchor's six
+    for anchor in (0, 2, n - 1):
+        order = se3.elimination_order(n, graph, anchor)
+        assert sorted(order.tolist()) == list(range(6 * (n - 1)))
+        fixed = np.r_[0 : 6 * anchor, 6 * anchor + 6 : 6 * n]
+        delta = np.zeros(6 * n)
+        delta[fixed] = np.linalg.solve(h[np.ix_(fixed, fixed)], -g[fixed])
+        step = se3.gauss_newton_step(x, graph, anchor=anchor, order=order)
+        assert np.allclose(step, x @ se3.se3_exp(delta.reshape(n, 6)))
 
 
 def test_align_recovers_a_rigid_motion() -> None:
