@@ -11,7 +11,12 @@ mutants, hostile learners whose code floods, hangs, exits, forks or raises), the
    ``--jobs 2`` is at most ``2 × t1 / CPU2`` times faster than ``--jobs 1`` took;
 2. reports, per complete submission: seconds (median), and the grader's overhead: the
    submission's wall time minus the time spent inside the learner's own calls;
-3. extrapolates ``--jobs 2`` to 500 complete submissions;
+3. extrapolates ``--jobs 2`` to 500 complete submissions, two ways: 500 × the median complete
+   submission at ``--jobs 1`` ÷ the whole class's speed-up (which scales this class's set-up
+   and its last, slowest learners with it, as if 500 learners paid them ten times), and the
+   ``--jobs 2`` run's part not spent grading submissions (set-up, test sets, the end's idle
+   process: its wall time minus the submissions' seconds ÷ 2) once, plus 500 × the median
+   complete submission's seconds in that run ÷ 2 (two are graded at a time);
 4. measures, before grading, what two cores of this machine give two processes of pure
    Python work at the time (a virtual machine's cores are seldom two whole cores): the
    speed-up no ``--jobs 2`` run can exceed here, whatever it does.
@@ -138,6 +143,12 @@ def main() -> None:
     print(f"  at most   {2 * t1 / cpu2:.2f}×   on 2 cores for this CPU: --jobs 1 keeps "
           f"{cpu1 / t1:.2f} cores busy itself; CPU from {meter.kind}")  # fmt: skip
     per_complete = statistics.median(seconds) / speedup
+    seconds2 = [d["seconds"] for n, d in two.items() if n.startswith("complete")]
+    fixed2 = t2 - sum(d["seconds"] for d in two.values()) / 2
+    paired = (fixed2 + 500 * statistics.median(seconds2) / 2) / 60
+    print(f"500 complete submissions at --jobs 2: {paired:.1f} min as {fixed2:.1f} s once + 500 × "
+          f"{statistics.median(seconds2):.2f} s ÷ 2 (the --jobs 2 run's set-up and idle end, its "
+          "median complete submission)")  # fmt: skip
     print(f"500 complete submissions at --jobs 2, extrapolated: {500 * per_complete / 60:.1f} min "
           f"(goal ≤ 10 min); load average now {os.getloadavg()[0]:.2f}")  # fmt: skip
     print(f"500 submissions of this class's mix at --jobs 2: {500 * t2 / len(paths) / 60:.1f} min")
