@@ -447,3 +447,65 @@ def test_render_markdown_never_raises_and_plain_has_no_escapes(md: str, width: i
     plain = render_markdown(md, width=width, color=False)
     assert "\x1b" not in plain
     assert strip_ansi(render_markdown(md, width=width, color=True)) == plain
+
+
+def _through_the_parser(md: str, width: int, color: bool) -> str:
+    from slamcourse.render import terminal
+
+    tree = terminal._parse_tree(md)
+    lines = terminal._Markdown(color, None, None).blocks(tree.children, max(1, width))
+    return "\n".join(line.rstrip() for line in lines)
+
+
+_WORD = st.text(st.sampled_from("abcXYZ019,.;:'\"?!%/@^{}()πχ²éー"), min_size=1, max_size=9)
+_LINE = st.lists(_WORD, min_size=1, max_size=9).map(" ".join)
+_PARAGRAPH = st.lists(_LINE, min_size=1, max_size=3).map("\n".join)
+_PLAIN = st.lists(_PARAGRAPH, min_size=1, max_size=3).map("\n\n".join)
+_MARKDOWN = [*"*_`$[]<>#&\\|~+-=\t\n ", "\n\n", "1. ", "2) ", "\u2003", "\u00a0", "\x1b", "\u00ad"]
+
+
+@st.composite
+def _plainish(draw: st.DrawFn) -> str:
+    """Plain text, sometimes with one piece of what makes text Markdown put in somewhere."""
+    text = draw(_PLAIN)
+    if draw(st.booleans()):
+        at = draw(st.integers(0, len(text)))
+        text = text[:at] + draw(st.sampled_from(_MARKDOWN)) + text[at:]
+    return text
+
+
+_PLAINISH = _plainish()
+
+
+@given(_PLAINISH, st.integers(1, 90), st.booleans())
+@settings(max_examples=400, deadline=None)
+def test_plain_text_is_rendered_as_the_markdown_parser_renders_it(
+    md: str, width: int, color: bool
+) -> None:
+    """Feedback that is plain text skips the Markdown parser (and its import, ~25 ms of a
+    learner's first check); whatever it accepts must come out exactly as the parser's tree of
+    it would, and anything with Markdown's syntax goes to the parser."""
+    from slamcourse.render import terminal
+
+    if terminal._plain_paragraphs(md) is not None:
+        assert render_markdown(md, width=width, color=color) == _through_the_parser(
+            md, width, color
+        )
+
+
+def test_the_plain_path_takes_feedback_and_leaves_markdown_to_the_parser() -> None:
+    from slamcourse.render import terminal
+
+    plain = "All 120 test inputs passed, edge cases and boundary inputs included.\n\nχ² is 14806."
+    assert terminal._plain_paragraphs(plain) is not None
+    for md in (
+        "`f` returns",
+        "x *y*",
+        "1. a",
+        "a\n===",
+        "a  \nb",
+        "    code",
+        "a\n\n\nb",
+        "a &amp; b",
+    ):
+        assert terminal._plain_paragraphs(md) is None, md

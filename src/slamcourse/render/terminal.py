@@ -10,6 +10,7 @@ this module is imported.
 from __future__ import annotations
 
 import os
+import re
 
 from slamcourse.course.loader import directive_id, figure_id
 from slamcourse.render.math import _sanitize, latex_to_unicode, text_width
@@ -580,6 +581,47 @@ def render_markdown(
     ``color=False`` the output holds no escape codes (control characters in the input are
     replaced by U+FFFD).
     """
+    plain = _plain_paragraphs(md)
+    if plain is not None:  # (most feedback: the Markdown parser need not even be imported)
+        lines: list[str] = []
+        for words in plain:
+            if lines:
+                lines.append("")
+            lines.extend(_join(line, color) for line in _wrap(words, max(1, width)))
+        return "\n".join(line.rstrip() for line in lines)
     tree = _parse_tree(md)
     lines = _Markdown(color, exercise, figure).blocks(tree.children, max(1, width))
     return "\n".join(line.rstrip() for line in lines)
+
+
+_PLAIN_WORD = r"[A-Za-z0-9,.;:'\"?!%/@^{}()\u00a1-\uffff]+"
+_PLAIN_LINE = re.compile(f"{_PLAIN_WORD}(?: {_PLAIN_WORD})*")
+"""A line Markdown reads as nothing but its words: no ASCII character of Markdown's syntax
+(emphasis, code, links, images, math, HTML, entities, escapes, headings and their underlines,
+lists, quotes, tables, rules), no space at either end or twice in a row (line breaks, code
+blocks), no tab; ``str.isprintable`` then keeps out control characters and Unicode spaces."""
+_LIST_START = re.compile(r"[0-9]+[.)]")
+
+
+def _plain_paragraphs(md: str) -> list[list[list[_Piece]]] | None:
+    """``md``'s paragraphs as words when every line is plain text (:data:`_PLAIN_LINE`, and not
+    the start of an ordered list) and paragraphs are separated by single blank lines; None
+    otherwise. Rendered through the same wrapping, such text comes out exactly as markdown-it's
+    tree of it does (tests/unit/test_render_terminal.py compares the two)."""
+    paragraphs: list[list[list[_Piece]]] = []
+    words: list[list[_Piece]] = []
+    blank = True
+    for line in md.split("\n"):
+        if not line:
+            if blank:
+                return None  # (two blank lines in a row, or one first: keep to the parser)
+            paragraphs.append(words)
+            words, blank = [], True
+            continue
+        if not _PLAIN_LINE.fullmatch(line) or _LIST_START.match(line) or not line.isprintable():
+            return None
+        words.extend([(word, ())] for word in line.split(" "))
+        blank = False
+    if words:
+        paragraphs.append(words)
+    return paragraphs or None
