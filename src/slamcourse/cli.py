@@ -693,7 +693,7 @@ def cmd_grade(args: argparse.Namespace, out: Out) -> int:
                 flush=True,
             )
 
-    results = grade.grade_all(paths, options, jobs=args.jobs, on_done=bar)
+    results = grade.grade_all(paths, options, jobs=args.jobs, pin=not args.no_pin, on_done=bar)
     if args.out:
         outputs.write_results(results, paths, args.format, Path(args.out))
     elif args.format == "json":
@@ -910,6 +910,12 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
     p = add("grade", cmd_grade, "grade submissions in batch (exit 0 whenever grading ran)")
     p.add_argument("submissions", metavar="SUBMISSION", nargs="*", help="folders or .zip files")
     p.add_argument("--jobs", type=int, default=1, metavar="N", help="worker processes")
+    p.add_argument(
+        "--no-pin",
+        action="store_true",
+        help="let the system move the --jobs processes between CPUs (by default each is "
+        "pinned to a CPU of its own when there are enough)",
+    )
     p.add_argument("--shard", metavar="K/N", help="grade every N-th submission from the K-th")
     p.add_argument(
         "--format",

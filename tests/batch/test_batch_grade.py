@@ -4,6 +4,7 @@ stops the batch, and the CLI's exit code says only whether grading ran."""
 from __future__ import annotations
 
 import json
+import os
 from pathlib import Path
 from typing import Any
 
@@ -186,6 +187,9 @@ def test_cli_grades_writes_outside_nothing_and_exits_0(
             "grade",
             str(sub),
             str(bad),
+            "--jobs",  # (in two processes the system places: the flag reaches grade_all)
+            "2",
+            "--no-pin",
             "--format",
             "gradescope",
             "--out",
@@ -358,3 +362,42 @@ def test_a_shared_answer_is_built_with_its_misconceptions_values() -> None:
     kept = build_answers(FIXTURE_COURSE, "basics/offset")
     assert [name for _file, name, _args in kept] == ["offset", "offset_swapped"]
     assert build_answers(FIXTURE_COURSE, "basics/slope") == {}
+
+
+def test_grading_processes_are_pinned_one_per_cpu_when_there_are_enough(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """``--jobs N`` pins its N processes to N CPUs of their own when this process may run on
+    at least N; with fewer, or one job (graded in-process), the system places them."""
+    from slamcourse.batch import grade
+
+    monkeypatch.setattr(os, "sched_getaffinity", lambda pid: {3, 1, 7, 5})
+    assert grade.cpus_to_pin(2) == [1, 3]
+    assert grade.cpus_to_pin(4) == [1, 3, 5, 7]
+    assert grade.cpus_to_pin(5) == []
+    assert grade.cpus_to_pin(1) == []
+
+
+def _pinned(cpus: list[int], taken: Any, found: Any) -> None:
+    from slamcourse.batch.grade import _grading_process
+
+    _grading_process(cpus, taken)
+    found.put(sorted(os.sched_getaffinity(0)))
+
+
+@pytest.mark.skipif(len(os.sched_getaffinity(0)) < 2, reason="needs two CPUs")
+def test_each_grading_process_runs_on_its_own_cpu() -> None:
+    """As ``grade_all`` starts its pool's processes: each takes the next CPU for itself (and
+    for its sandboxes, which inherit it)."""
+    import multiprocessing
+
+    from slamcourse.batch.grade import cpus_to_pin
+
+    cpus = cpus_to_pin(2)
+    context = multiprocessing.get_context("forkserver")
+    taken, found = context.Value("i", 0), context.Queue()
+    for _ in range(2):
+        process = context.Process(target=_pinned, args=(cpus, taken, found))
+        process.start()
+        process.join(60)
+    assert sorted(found.get(timeout=5) for _ in range(2)) == [[cpus[0]], [cpus[1]]]
