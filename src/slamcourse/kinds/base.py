@@ -91,10 +91,11 @@ class Kind(ABC):
         misconceptions' where this kind computes them from the variant's parameters alone."""
         if spec.reference is None:
             return []
-        params = dict(variant.params)
-        calls = [(spec.reference, spec.reference_line, params)]
+        calls = [_reference_call(spec, variant)]
         if self.misconceptions_from_params:
-            calls += [(m.compute, m.line, params) for m in spec.misconceptions if m.compute]
+            calls += [
+                _misconception_call(spec, m, variant) for m in spec.misconceptions if m.compute
+            ]
         return calls
 
     # ---- validation
@@ -121,14 +122,28 @@ class Kind(ABC):
 # ---------------------------------------------------------------------------- helpers
 
 
-def call_reference(spec: ExerciseSpec, variant: Variant) -> Any:
+def _reference_call(spec: ExerciseSpec, variant: Variant) -> tuple[str, int, dict[str, Any]]:
+    """The reference call grading ``variant`` makes (function, line, arguments): the one place
+    that says it, so that a result a batch computed ahead (:meth:`Kind.reference_calls`) is
+    the one found when grading."""
     assert spec.reference is not None
-    return reference.call(spec, spec.reference, spec.reference_line, dict(variant.params))
+    return spec.reference, spec.reference_line, dict(variant.params)
+
+
+def _misconception_call(
+    spec: ExerciseSpec, m: Misconception, variant: Variant
+) -> tuple[str, int, dict[str, Any]]:
+    """The call reproducing misconception ``m`` for ``variant`` (see :func:`_reference_call`)."""
+    assert m.compute is not None
+    return m.compute, m.line, dict(variant.params)
+
+
+def call_reference(spec: ExerciseSpec, variant: Variant) -> Any:
+    return reference.call(spec, *_reference_call(spec, variant))
 
 
 def misconception_value(spec: ExerciseSpec, m: Misconception, variant: Variant) -> Any:
-    assert m.compute is not None
-    return reference.call(spec, m.compute, m.line, dict(variant.params))
+    return reference.call(spec, *_misconception_call(spec, m, variant))
 
 
 def render(spec: ExerciseSpec, text: Text, variant: Variant, **extra: Any) -> str:

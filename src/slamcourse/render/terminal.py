@@ -209,6 +209,11 @@ def _wrap(words: list[list[_Piece]], width: int) -> list[list[_Piece]]:
     return lines
 
 
+def _wrapped(words: list[list[_Piece]], width: int, color: bool) -> list[str]:
+    """``words`` filled into lines of ``width`` columns (:func:`_wrap`), as text (:func:`_join`)."""
+    return [_join(line, color) for line in _wrap(words, width)]
+
+
 def _join(line: list[_Piece], color: bool) -> str:
     """One wrapped line as text, consecutive pieces with the same styles styled together."""
     if not color:
@@ -356,7 +361,7 @@ class _Markdown:
             if any(word is not _BREAK for word in words):
                 if out:
                     out.append("")
-                out.extend(_join(line, self.color) for line in _wrap(words, width))
+                out.extend(_wrapped(words, width, self.color))
 
         for child in inline.children:
             if child.type == "math_inline_double":
@@ -398,7 +403,7 @@ class _Markdown:
                 self.inline(node.children[0].children, acc, ("italic",))
                 acc.end_word()
         acc.atom(tail, ("dim",))
-        return [_join(line, self.color) for line in _wrap(acc.finish(), width)]
+        return _wrapped(acc.finish(), width, self.color)
 
     def code(self, node: SyntaxTreeNode, width: int = 80) -> list[str]:
         info = node.info.strip() if node.type == "fence" else ""
@@ -587,7 +592,7 @@ def render_markdown(
         for words in plain:
             if lines:
                 lines.append("")
-            lines.extend(_join(line, color) for line in _wrap(words, max(1, width)))
+            lines.extend(_wrapped(words, max(1, width), color))
         return "\n".join(line.rstrip() for line in lines)
     tree = _parse_tree(md)
     lines = _Markdown(color, exercise, figure).blocks(tree.children, max(1, width))
@@ -607,7 +612,7 @@ def _plain_paragraphs(md: str) -> list[list[list[_Piece]]] | None:
     """``md``'s paragraphs as words when every line is plain text (:data:`_PLAIN_LINE`, and not
     the start of an ordered list) and paragraphs are separated by single blank lines; None
     otherwise. Rendered through the same wrapping, such text comes out exactly as markdown-it's
-    tree of it does (tests/unit/test_render_terminal.py compares the two)."""
+    tree of it does (tests/unit/test_render.py compares the two)."""
     paragraphs: list[list[list[_Piece]]] = []
     words: list[list[_Piece]] = []
     blank = True
