@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import importlib
 import os
 import shutil
 import sqlite3
@@ -9,7 +10,8 @@ import stat
 import subprocess
 import sys
 import tempfile
-from collections.abc import Iterator
+import traceback
+from collections.abc import Callable, Iterator
 from pathlib import Path
 
 import pytest
@@ -460,9 +462,47 @@ def test_import_is_light() -> None:
     assert out.stdout.strip() == "[]"
 
 
-@pytest.mark.skipif(IS_ROOT, reason="root ignores file permissions")
-def test_read_only_directory_gives_progress_error(tmp_path: Path) -> None:
-    folder = tmp_path / "locked"
+NOBODY = 65534
+LAZY_IMPORTS = ("secrets",)  # what the progress store imports when it first needs it
+
+
+def _without_privileges(body: Callable[[Path], None], tmp_path: Path) -> None:
+    """Run ``body(folder)`` where file permissions apply: here, or, as root (whom they do not
+    bind), in a forked child that has become ``nobody``, with a folder ``nobody`` owns; the
+    child's failure is raised here with its traceback."""
+    if not IS_ROOT:
+        body(tmp_path)
+        return
+    for name in LAZY_IMPORTS:  # (nobody cannot read root's Python library to import them)
+        importlib.import_module(name)
+    folder = Path(tempfile.mkdtemp(prefix="slamcourse-nobody-"))  # (under /tmp: traversable)
+    os.chown(folder, NOBODY, NOBODY)
+    read, write = os.pipe()
+    pid = os.fork()
+    if pid == 0:  # the child: never returns to pytest
+        code = 0
+        try:
+            os.close(read)
+            os.setgroups([])
+            os.setgid(NOBODY)
+            os.setuid(NOBODY)
+            body(folder)
+        except BaseException:
+            os.write(write, traceback.format_exc().encode())
+            code = 1
+        os._exit(code)
+    os.close(write)
+    try:
+        with os.fdopen(read, "rb") as report:
+            failure = report.read().decode()
+        _, status = os.waitpid(pid, 0)
+        assert os.waitstatus_to_exitcode(status) == 0, failure
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
+
+
+def _read_only_directory(base: Path) -> None:
+    folder = base / "locked"
     folder.mkdir()
     folder.chmod(stat.S_IRUSR | stat.S_IXUSR)
     try:
@@ -476,8 +516,12 @@ def test_read_only_directory_gives_progress_error(tmp_path: Path) -> None:
         folder.chmod(stat.S_IRWXU)
 
 
-@pytest.mark.skipif(IS_ROOT, reason="root ignores file permissions")
-def test_read_only_file_reads_but_refuses_writes(db_path: Path) -> None:
+def test_read_only_directory_gives_progress_error(tmp_path: Path) -> None:
+    _without_privileges(_read_only_directory, tmp_path)
+
+
+def _read_only_file(base: Path) -> None:
+    db_path = base / "home" / DB_FILENAME
     with Progress.open(db_path) as store:
         store.record_attempt("ex", 1, "x", PASSED)
     before = db_path.read_bytes()
@@ -491,6 +535,10 @@ def test_read_only_file_reads_but_refuses_writes(db_path: Path) -> None:
         assert db_path.read_bytes() == before
     finally:
         db_path.chmod(stat.S_IRUSR | stat.S_IWUSR)
+
+
+def test_read_only_file_reads_but_refuses_writes(tmp_path: Path) -> None:
+    _without_privileges(_read_only_file, tmp_path)
 
 
 # ---------------------------------------------------------------------------------------------
