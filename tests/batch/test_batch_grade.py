@@ -19,6 +19,7 @@ from slamcourse.batch.grade import (
     shard,
     without_timing,
 )
+from slamcourse.batch.submission import MANIFEST
 from slamcourse.cli import main
 from tests.batch.conftest import CODE_ID, COURSE, SOLUTION, make_submission, right_answer
 from tests.conftest import FIXTURE_COURSE
@@ -401,3 +402,78 @@ def test_each_grading_process_runs_on_its_own_cpu() -> None:
         process.start()
         process.join(60)
     assert sorted(found.get(timeout=5) for _ in range(2)) == [[cpus[0]], [cpus[1]]]
+
+
+def test_the_long_parts_of_the_submissions_graded_last_go_first(tmp_path: Path) -> None:
+    """A batch does not end on one learner's slow optimiser: the submissions graded last (a
+    tenth, at least four per process) are graded in two parts, and the parts with the
+    exercises that may run long go before everything else; every exercise of a split
+    submission is in exactly one of its parts. One process, or nothing that runs long:
+    whole submissions, largest first."""
+    from slamcourse.batch.grade import _largest_first, plan
+
+    paths = []
+    for k in range(12):
+        (tmp_path / f"s{k}").mkdir()
+        (tmp_path / f"s{k}" / "a.py").write_text("x" * (100 * k + 1))
+        paths.append(tmp_path / f"s{k}")
+    order = _largest_first(paths)
+    long = frozenset({"b/long", "c/long"})
+    tasks = plan(paths, long, 2)
+    last = order[4:]  # (eight: four per process)
+    assert [i for i, _ in tasks] == last + order[:4] + last
+    assert all(part is not None and part.inside for _, part in tasks[:8])
+    assert all(part is None for _, part in tasks[8:12])
+    assert all(part is not None and not part.inside for _, part in tasks[12:])
+    first, rest = tasks[0][1], tasks[-1][1]
+    assert first is not None and rest is not None
+    for ex in ("a/short", "b/long", "c/long", "d/text"):
+        assert (ex in first) != (ex in rest)
+    assert plan(paths, long, 1) == plan(paths, frozenset(), 2) == [(i, None) for i in order]
+    big = [tmp_path / f"missing-{k}.zip" for k in range(200)]
+    assert sum(part is not None and part.inside for _, part in plan(big, long, 2)) == 20
+
+
+def test_a_submission_graded_in_parts_gets_the_grade_it_gets_whole(
+    graded: Any, monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> None:
+    """Split (the code exercise taken for one that may run long), every submission of the
+    class, right, wrong, crashing, flooding, missing or with warnings, is graded exactly as it
+    is whole: its exercises in the course's order, its warnings once, its error its own."""
+    from slamcourse.batch import grade
+
+    paths, whole = graded
+    warned = make_submission(
+        tmp_path / "warned", 31, {"basics/distance": "1"}, SOLUTION, manifest={"engine": "0.0.1"}
+    )
+    manifest = json.loads((warned / MANIFEST).read_text())
+    manifest["answers"].append({"exercise": "nope/not-here", "variant": 0, "answer": "2"})
+    (warned / MANIFEST).write_text(json.dumps(manifest))
+    alone = grade_all([warned], GradeOptions(course=FIXTURE_COURSE), jobs=1)
+    assert len(alone[0].warnings) == 2 and len(alone[0].exercises) == len(whole[0].exercises)
+    monkeypatch.setattr(grade, "_long_exercises", lambda course: frozenset({CODE_ID}))
+    assert grade.plan(paths, frozenset({CODE_ID}), 2)[0][1] is not None
+    split = grade_all([*paths, warned], GradeOptions(course=FIXTURE_COURSE), jobs=2, pin=False)
+    assert [without_timing(g.to_dict()) for g in split] == [
+        without_timing(g.to_dict()) for g in [*whole, *alone]
+    ]
+
+
+def test_merging_parts_keeps_the_courses_order_and_any_parts_error() -> None:
+    from slamcourse.batch.grade import ExerciseGrade, merged
+
+    def ex(name: str) -> ExerciseGrade:
+        return ExerciseGrade(name, name, "code", 1, 0, "passed", 1.0, "ok", seconds=0.5)
+
+    a = SubmissionGrade("s", "l", "graded", (ex("c"), ex("a")), None, ("w1", "w2"), 1.0, "f")
+    b = SubmissionGrade("s", "l", "graded", (ex("b"),), None, ("w2",), 2.0, "f")
+    whole = merged([a, b], ["a", "b", "c"])
+    assert [e.exercise for e in whole.exercises] == ["a", "b", "c"]
+    assert whole.warnings == ("w1", "w2") and whole.seconds == 3.0 and whole.score == 3.0
+    assert whole.fingerprint == "f" and whole.status == "graded"
+    died = SubmissionGrade("s", None, "error", error="the grading process failed: boom")
+    for parts in ([a, died], [died, b]):
+        failed = merged(parts, ["a", "b", "c"])
+        assert failed.status == "error" and failed.error == died.error
+        assert failed.exercises == ()
+    assert merged([a], ["a", "c"]) is a

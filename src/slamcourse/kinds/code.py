@@ -68,6 +68,19 @@ class CodeOptions:
         overrides: dict[str, Any] = dict(self.limits)  # whole numbers where Limits wants int
         return Limits(**overrides) if overrides else None
 
+    def may_run_long(self) -> bool:
+        """Whether the exercise gives a learner's function more time than the sandbox's
+        defaults (a whole data set): how long its check takes then depends most on the
+        learner's method (a dense solve of INTEL took 10 s where the sparse one took 0.1 s)."""
+        from slamcourse.sandbox import Limits
+
+        default = Limits()
+        return any(
+            value > getattr(default, name)
+            for name, value in self.limits
+            if name in ("call_seconds", "total_seconds", "cpu_seconds")
+        )
+
 
 class CodeKind(Kind):
     """Write a function; Hypothesis checks it against the reference on ≥ 200 inputs."""
