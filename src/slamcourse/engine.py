@@ -579,9 +579,9 @@ class Engine:
         where = str(path) if path is not None else filename
         return self._conclude(spec, variants.variant(spec, 0), f"{where} sha256:{digest}", verdict)
 
-    def _take_worker(self, limits: Any = None) -> Any:
+    def _take_worker(self, limits: Any = None, *, scipy: bool = True) -> Any:
         """A fresh sandbox worker with ``limits`` (None: the defaults, which the pool's
-        pre-started workers have)."""
+        pre-started workers have) for code that does (not) use ``scipy``."""
         with self._pool_lock:
             if self._pool is None:
                 self._pool = self._new_pool(
@@ -591,7 +591,7 @@ class Engine:
                     reuse=self._fork_workers,
                 )
             pool = self._pool
-        return pool.take(limits)
+        return pool.take(limits, scipy=scipy)
 
     def _conclude(
         self, spec: ExerciseSpec, variant: Variant, answer: str, verdict: Verdict

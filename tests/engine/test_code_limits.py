@@ -86,9 +86,9 @@ def test_the_exercise_limits_replace_the_engine_worker(course_copy: Path) -> Non
     pool = WorkerPool()  # the engine's: default limits, one worker started early
     pool.warm()
 
-    def engine_worker(limits: Any) -> Any:
+    def engine_worker(limits: Any, scipy: bool) -> Any:
         asked.append(limits)
-        return pool.take(limits)
+        return pool.take(limits, scipy=scipy)
 
     source = SLEEPER.format(seconds=1.5)
     with_limits(course_copy, "limits: {call_seconds: 1}\n")

@@ -9,6 +9,7 @@ from __future__ import annotations
 import textwrap
 import time
 from collections.abc import Iterator
+from typing import Any
 
 import pytest
 
@@ -31,6 +32,11 @@ def ns_zygote(ns_level: str) -> Iterator[Zygote]:
     grader's own user)."""
     with Zygote.spawn(force=ns_level) as z:
         yield z
+
+
+def _result(pending: Any) -> Zygote:
+    assert pending is not None
+    return pending.result()  # type: ignore[no-any-return]
 
 
 def load(z: Zygote, source: str, limits: Limits | None = None) -> object:
@@ -352,7 +358,7 @@ def test_the_pool_replaces_a_zygote_the_learner_killed(
     pool = WorkerPool(fork=True)
     try:
         worker = pool.take(Limits())
-        first = pool._zygote.result()  # type: ignore[union-attr]
+        first = pool._zygotes[True].result()  # type: ignore[union-attr]
         loaded = worker.load(
             "import os, signal\ndef f():\n    os.kill(os.getppid(), signal.SIGKILL)\n", "f.py", "f"
         )
@@ -363,7 +369,7 @@ def test_the_pool_replaces_a_zygote_the_learner_killed(
         again = pool.take(Limits())
         assert again.load("def f():\n    return 1\n", "f.py", "f").ok
         assert again.call([]).value == 1
-        now = pool._zygote.result()  # type: ignore[union-attr]
+        now = pool._zygotes[True].result()  # type: ignore[union-attr]
         assert (now is first and first.alive) if level == "namespaces" else now is not first
         again.close()
     finally:
@@ -422,7 +428,7 @@ def test_a_worker_forked_ahead_serves_an_exercise_whose_time_budgets_differ() ->
     try:
         first = pool.take(Limits())
         forked_ahead()
-        zygote = pool._zygote.result()  # type: ignore[union-attr]
+        zygote = pool._zygotes[True].result()  # type: ignore[union-attr]
         forks = []
         real_fork = zygote._fork
         zygote._fork = lambda *a: forks.append(a) or real_fork(*a)  # type: ignore[method-assign]
@@ -509,19 +515,19 @@ def test_a_zygote_started_ahead_serves_the_next_pool_only_and_is_preloaded() -> 
             return [os.getppid(), "scipy.sparse.linalg" in sys.modules]
         """
     pool_module.start_zygote_ahead(require_isolation=False)
-    ahead = pool_module._AHEAD[False].result()  # started (and ready) in the background
+    ahead = pool_module._AHEAD[False, True].result()  # started (and ready) in the background
     first_pool = pool_module.WorkerPool(fork=True)
     second_pool = pool_module.WorkerPool(fork=True)
     try:
         worker = first_pool.take(Limits())
-        assert first_pool._zygote is not None and first_pool._zygote.result() is ahead
+        assert _result(first_pool._zygotes.get(True)) is ahead
         assert worker.load(textwrap.dedent(source), "f.py", "f").ok
         assert worker.call([]).value[1] is True  # preloaded before its first fork
         worker.close()
         other = second_pool.take(Limits())
-        assert second_pool._zygote is not None and second_pool._zygote.result() is not ahead
+        assert _result(second_pool._zygotes.get(True)) is not ahead
         other.close()
-        assert False not in pool_module._AHEAD  # taken once, by the first pool
+        assert (False, True) not in pool_module._AHEAD  # taken once, by the first pool
     finally:
         first_pool.close()
         second_pool.close()
@@ -614,12 +620,12 @@ def test_a_kept_zygote_serves_the_next_learner_with_nothing_of_the_last(ns_level
         assert worker.load(textwrap.dedent(LEAVE_FILES), "f.py", "f").ok
         found = set(worker.call([]).value)
         assert found >= LEFT
-        zygote = first._zygote.result()  # type: ignore[union-attr]
+        zygote = first._zygotes[True].result()  # type: ignore[union-attr]
         worker.close()
         first.close()
-        assert pool_module._KEPT.get(True) is zygote and zygote.alive  # reset clean: kept
+        assert pool_module._KEPT.get((True, True)) is zygote and zygote.alive  # reset clean: kept
         other = second.take(Limits())
-        assert second._zygote is not None and second._zygote.result() is zygote
+        assert _result(second._zygotes.get(True)) is zygote
         assert other.load(textwrap.dedent(LIST_TMP), "f.py", "f").ok
         listing, writable, usr = other.call([]).value
         assert set(listing) == found - LEFT and writable and usr
@@ -703,12 +709,12 @@ def test_a_pool_whose_zygote_cannot_be_reset_gives_the_next_learner_a_new_one(
         worker = first.take(Limits())
         source = "import os\ndef f():\n    os.chmod('/tmp', 0o500)\n    return 1\n"
         assert worker.load(source, "f.py", "f").ok and worker.call([]).value == 1
-        zygote = first._zygote.result()  # type: ignore[union-attr]
+        zygote = first._zygotes[True].result()  # type: ignore[union-attr]
         worker.close()
         first.close()
-        assert not zygote.alive and True not in pool_module._KEPT
+        assert not zygote.alive and (True, True) not in pool_module._KEPT
         other = second.take(Limits())
-        assert second._zygote is not None and second._zygote.result() is not zygote
+        assert _result(second._zygotes.get(True)) is not zygote
         assert other.load(textwrap.dedent(LIST_TMP), "f.py", "f").ok
         assert other.call([]).value[1] is True  # a fresh /tmp, writable again
         other.close()
@@ -909,3 +915,58 @@ def test_builtins_patched_by_learner_code_that_runs_around_a_call_are_restored(
     assert [r.status for r in results] == ["ok"] * 4, results
     assert [r.value for r in results] == [[3, 0.5], [1, 0.5], [1, 0.5], [0, 0.5]]
     assert results[0].mutated == (0,) and results[1].mutated == ()
+
+
+# -- two zygotes for one learner: with and without scipy ---------------------------------------
+
+HAS_SCIPY = """
+import sys
+def f():
+    return "scipy.linalg" in sys.modules
+"""
+
+
+def test_uses_scipy_reads_the_name_as_a_word() -> None:
+    from slamcourse.grading.pool import uses_scipy
+
+    for source in ("import scipy", "from scipy.sparse import csc_matrix", "x = 1  # scipy"):
+        assert uses_scipy(source)
+    for source in ("import numpy as np", "my_scipy = 1", "scipyish()", ""):
+        assert not uses_scipy(source)
+
+
+def test_a_reusing_pool_forks_each_worker_from_the_zygote_its_source_needs(
+    ns_level: str,
+) -> None:
+    """A batch learner's code that names scipy runs in a worker whose zygote has imported it;
+    other code in one from a zygote that has not (a lighter fork), where importing scipy
+    still works. Both zygotes are kept for the next learner. A pool that does not reuse its
+    zygotes (one learner's checks) forks every worker from one that has."""
+    from slamcourse.grading import pool as pool_module
+
+    reusing = pool_module.WorkerPool(fork=True, reuse=True, require_isolation=True)
+    single = pool_module.WorkerPool(fork=True, require_isolation=True)
+    try:
+        for pool, scipy in ((reusing, False), (reusing, True), (single, False)):
+            pool.take(Limits(), scipy=scipy).close()  # (a zygote preloads after its 1st fork)
+        found = []
+        for pool, scipy in ((reusing, False), (reusing, True), (reusing, False), (single, False)):
+            worker = pool.take(Limits(), scipy=scipy)
+            assert worker.load(textwrap.dedent(HAS_SCIPY), "f.py", "f").ok
+            found.append(worker.call([]).value)
+            worker.close()
+        assert found == [False, True, False, True]
+        worker = reusing.take(Limits(), scipy=False)
+        source = "import scipy.sparse.linalg as s\ndef f():\n    return s.spsolve.__name__\n"
+        assert worker.load(source, "f.py", "f").ok
+        assert worker.call([]).value == "spsolve"
+        worker.close()
+        zygotes = {scipy: z.result() for scipy, z in reusing._zygotes.items() if z is not None}
+        assert set(zygotes) == {False, True} and zygotes[False] is not zygotes[True]
+        reusing.close()
+        assert pool_module._KEPT.get((True, False)) is zygotes[False]
+        assert pool_module._KEPT.get((True, True)) is zygotes[True]
+    finally:
+        reusing.close()
+        single.close()
+        pool_module._close_ahead()

@@ -439,6 +439,19 @@ def _grade_answer(
     )
 
 
+def _grading_order(sub: Submission, answer: Answer) -> int:
+    """Text answers first (0), then code that does not use scipy (1), then code that does (2):
+    its workers come from another zygote (:func:`~slamcourse.grading.pool.uses_scipy`)."""
+    from slamcourse.grading.pool import uses_scipy
+
+    if answer.file is None:
+        return 0
+    try:
+        return 2 if uses_scipy(sub.source(answer).decode("utf-8", "replace")) else 1
+    except SlamcourseError:  # (reported when it is graded)
+        return 1
+
+
 def _text(data: bytes, name: str) -> str:
     try:
         return data.decode("utf-8")
@@ -593,18 +606,21 @@ def grade_submission(
             if ahead:  # (after this submission took the zygote started for it)
                 from slamcourse.grading.pool import start_zygote_ahead, zygote_needed_ahead
 
-                if zygote_needed_ahead(require_isolation=options.require_isolation):
-                    start_zygote_ahead(require_isolation=options.require_isolation)
+                for scipy in (False, True):
+                    isolated = options.require_isolation
+                    if zygote_needed_ahead(require_isolation=isolated, scipy=scipy):
+                        start_zygote_ahead(require_isolation=isolated, scipy=scipy)
             sub = _own_variants(sub, engine)
             warnings = [*sub.notes, *_check_claims(sub, engine, root, name)]
             given = {
                 a.exercise: a for a in sub.manifest.answers if part is None or a.exercise in part
             }
             graded: dict[str, ExerciseGrade] = {}
-            # text answers first: the sandbox's zygote starts meanwhile (results keep the
-            # course's order)
+            # text answers first: the sandbox's zygotes start meanwhile; then the code that
+            # does not use scipy, then the code that does: one switch between the two zygotes
+            # (results keep the course's order)
             known = set(engine.course.exercise_ids)
-            for answer in sorted(given.values(), key=lambda a: a.file is not None):
+            for answer in sorted(given.values(), key=lambda a: _grading_order(sub, a)):
                 if answer.exercise in known:
                     graded[answer.exercise] = _grade_answer(engine, sub, answer, options, shared)
             grades: list[ExerciseGrade] = []

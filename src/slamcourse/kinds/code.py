@@ -259,9 +259,10 @@ class CodeKind(Kind):
         tests: Any = None,
         max_failures: int | None = None,
     ) -> Verdict:
-        """Grade learner ``source`` in a fresh sandboxed worker: ``spawn(limits)`` hands one out
-        (the engine's pool or a submission's zygote; ``limits`` is the exercise's own, or None
-        for the defaults); without it, one is spawned here.
+        """Grade learner ``source`` in a fresh sandboxed worker: ``spawn(limits, scipy=...)``
+        hands one out (the engine's pool or a submission's zygote; ``limits`` is the
+        exercise's own, or None for the defaults; ``scipy``, whether the source uses scipy);
+        without it, one is spawned here.
 
         ``tests``: a prebuilt :class:`~slamcourse.grading.testset.TestSet` (a batch builds each
         exercise's once, hidden inputs included); without it the visible test set is built
@@ -274,6 +275,7 @@ class CodeKind(Kind):
         from slamcourse.answers.text import unreadable_at
         from slamcourse.errors import GraderError
         from slamcourse.grading import testset
+        from slamcourse.grading.pool import uses_scipy
         from slamcourse.sandbox import Worker
 
         bad = unreadable_at(source)
@@ -290,7 +292,7 @@ class CodeKind(Kind):
         try:
             # start the interpreter first: it imports numpy while the test set is built
             if spawn is not None:
-                worker = spawn(limits)
+                worker = spawn(limits, scipy=uses_scipy(source))
             else:
                 worker = Worker.spawn(limits=limits, require_isolation=require_isolation)
             with worker:
@@ -623,7 +625,7 @@ class CodeKind(Kind):
                     path.name,
                     shrink=False,
                     tests=tests,
-                    spawn=zygote.worker,
+                    spawn=lambda limits, scipy: zygote.worker(limits),
                     max_failures=1,  # whether it passes is all the validator asks
                 )
 
