@@ -139,6 +139,29 @@ def test_shared_tests_are_built_once_and_survive_a_round_trip(tmp_path: Any) -> 
     assert [c.kwargs for c in again.get(SPEC).cases] == [c.kwargs for c in first.cases]
 
 
+def test_a_set_one_process_wrote_is_read_by_the_others_and_kept_by_its_own(
+    tmp_path: Any, monkeypatch: Any
+) -> None:
+    """A batch's grading process that built a set writes it for the others and keeps it: it
+    never reads its own file back; another process reads it once, when it first needs it;
+    an unreadable file is built again (with the same seeds: the same set)."""
+    built = testset.SharedTests("secret", 1).get(SPEC)
+    path = tmp_path / "set-0.pickle"
+    testset.SharedTests.write(built, path)
+    index = testset.SharedTests("secret", 1, files={SPEC.id: str(path)})
+    index.save(tmp_path / "index.pickle")
+    assert testset.SharedTests.load(tmp_path / "index.pickle").get(SPEC) is built  # its own
+    monkeypatch.setattr(testset, "_WRITTEN", {})  # (another process)
+    other = testset.SharedTests.load(tmp_path / "index.pickle")
+    assert other.sets == {}
+    read = other.get(SPEC)
+    assert read is not built and other.get(SPEC) is read
+    assert [c.kwargs for c in read.cases] == [c.kwargs for c in built.cases]
+    path.write_bytes(b"not a pickle")
+    again = testset.SharedTests.load(tmp_path / "index.pickle").get(SPEC)
+    assert [repr(c.expected) for c in again.cases] == [repr(c.expected) for c in built.cases]
+
+
 def test_a_hidden_run_draws_a_quarter_of_max_examples() -> None:
     """Fresh inputs catch code fitted to the visible ones; a quarter of ``max_examples`` (at
     least ten, at most all of them) per hidden run is enough for that, while the visible inputs

@@ -232,14 +232,21 @@ def _shared_tests(path: str | None, options: GradeOptions) -> SharedTests:
     return _SHARED[key]
 
 
-def build_tests(course: Path | None, exercise_id: str, secret: str, runs: int) -> TestSet:
-    """One exercise's test set for a batch (run in a grading process)."""
+def build_tests(
+    course: Path | None, exercise_id: str, secret: str, runs: int, out: str | None = None
+) -> TestSet | str:
+    """One exercise's test set for a batch (run in a grading process): written to ``out`` for
+    the other processes, which read it when they first need it, and kept by this one (returns
+    ``out``); without ``out``, returned."""
     from slamcourse.course.locate import course_root
 
     spec = _course(course_root(course)).exercise(exercise_id)
     tests = SharedTests(secret, runs).get(spec)
     tests.encode_chunks(tuple(spec.options.signature))  # (sent with the set)
-    return tests
+    if out is None:
+        return tests
+    SharedTests.write(tests, Path(out))
+    return out
 
 
 def _same_for_everyone(course: Any, exercise_id: str) -> bool:
@@ -764,13 +771,21 @@ def _grade_all(
                 for ex in course.exercise_ids
                 if _same_for_everyone(course, ex)
             ]
+            ordered = sorted(code_ids, key=lambda ex: _build_cost(course, ex), reverse=True)
             builds = {
-                pool.submit(build_tests, root, ex, options.secret, options.hidden_runs): ex
-                for ex in sorted(code_ids, key=lambda ex: _build_cost(course, ex), reverse=True)
+                pool.submit(
+                    build_tests,
+                    root,
+                    ex,
+                    options.secret,
+                    options.hidden_runs,
+                    str(scratch / f"set-{k}.pickle"),
+                ): ex
+                for k, ex in enumerate(ordered)
             }
             for built in as_completed(builds):
                 with contextlib.suppress(Exception):  # left to each submission to report
-                    shared.sets[builds[built]] = built.result()
+                    shared.files[builds[built]] = str(built.result())
             for computed in as_completed(answers):
                 with contextlib.suppress(Exception):  # (recomputed where needed, and reported)
                     shared.answers.update(computed.result())

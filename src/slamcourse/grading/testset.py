@@ -513,6 +513,10 @@ def hidden_seed(secret: str, exercise_id: str, run: int) -> int:
     return seed if seed != exercise_seed(exercise_id) else seed ^ 1
 
 
+_WRITTEN: dict[str, TestSet] = {}
+"""The test sets this process wrote (:meth:`SharedTests.write`), by file: read from here."""
+
+
 @dataclass
 class SharedTests:
     """The test sets of one batch: each exercise's built once (inputs, hidden inputs from the
@@ -520,31 +524,53 @@ class SharedTests:
     :meth:`save` / :meth:`load` hand them to grading processes (a pickle of plain data, written
     and read only by the grader itself), with ``answers``: reference results that are the same
     for every learner (:func:`~slamcourse.course.reference.kept_results`), which a grading
-    process adopts on :meth:`load`."""
+    process adopts on :meth:`load`. ``files``: sets that a grading process built and wrote
+    (:meth:`write`), read when first needed by every other process; the one that built a set
+    keeps it (its parent and the other processes never unpickle what they do not use)."""
 
     secret: str = ""
     runs: int = 1
     sets: dict[str, TestSet] = field(default_factory=dict)
     answers: dict[Any, Any] = field(default_factory=dict)
+    files: dict[str, str] = field(default_factory=dict)
     _lock: threading.Lock = field(default_factory=threading.Lock, repr=False)
 
     def get(self, spec: ExerciseSpec) -> TestSet:
         with self._lock:
             found = self.sets.get(spec.id)
+            if found is None and spec.id in self.files:
+                found = self._read(self.files[spec.id])
             if found is None:
                 seeds = [hidden_seed(self.secret, spec.id, r) for r in range(self.runs)]
                 found = build(spec, hidden_seeds=seeds)
-                self.sets[spec.id] = found
+            self.sets[spec.id] = found
             return found
 
+    @staticmethod
+    def _read(path: str) -> TestSet | None:
+        if path in _WRITTEN:
+            return _WRITTEN[path]
+        try:
+            found = pickle.loads(Path(path).read_bytes())  # our own file, never a learner's
+        except Exception:  # (e.g. a disk error): built again, the same set
+            return None
+        return found if isinstance(found, TestSet) else None
+
+    @staticmethod
+    def write(tests: TestSet, path: Path) -> None:
+        """Write one set for the other grading processes; this one keeps it."""
+        path.write_bytes(pickle.dumps(tests))
+        _WRITTEN[str(path)] = tests
+
     def save(self, path: Path) -> None:
-        path.write_bytes(pickle.dumps((self.secret, self.runs, self.sets, self.answers)))
+        data = (self.secret, self.runs, self.sets, self.answers, self.files)
+        path.write_bytes(pickle.dumps(data))
 
     @classmethod
     def load(cls, path: Path) -> SharedTests:
         from slamcourse.course import reference
 
         # our own file, never a learner's
-        secret, runs, sets, answers = pickle.loads(path.read_bytes())
+        secret, runs, sets, answers, files = pickle.loads(path.read_bytes())
         reference.adopt_results(answers)
-        return cls(secret, runs, sets, answers)
+        return cls(secret, runs, sets, answers, files)
