@@ -16,6 +16,7 @@ returns data: :class:`Prompt`, :class:`Result`, :class:`Hint`, each with ``to_di
 from __future__ import annotations
 
 import threading
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
@@ -578,6 +579,22 @@ class Engine:
         digest = hashlib.sha256(source.encode("utf-8", "replace")).hexdigest()[:16]
         where = str(path) if path is not None else filename
         return self._conclude(spec, variants.variant(spec, 0), f"{where} sha256:{digest}", verdict)
+
+    def expect_code(self, answers: Sequence[tuple[str, str]]) -> None:
+        """The code exercises this engine will grade next, in order, each with its source (a
+        batch submission's): its pool forks each worker ahead with what the next one needs
+        (:meth:`~slamcourse.grading.pool.WorkerPool.expect`)."""
+        from slamcourse.grading.pool import uses_scipy
+
+        upcoming = []
+        for exercise_id, source in answers:
+            spec = self.exercise(exercise_id)
+            if spec.kind == "code":
+                upcoming.append((spec.options.sandbox_limits(), uses_scipy(source)))
+        with self._pool_lock:
+            pool = self._pool
+        if pool is not None and pool.fork:
+            pool.expect(upcoming)
 
     def _take_worker(self, limits: Any = None, *, scipy: bool = True) -> Any:
         """A fresh sandbox worker with ``limits`` (None: the defaults, which the pool's

@@ -485,10 +485,10 @@ def test_a_submission_grades_text_then_code_without_scipy_then_code_with_it(
     """The order a submission's answers are graded in (results keep the course's): text while
     the zygotes start, then the code whose workers come from the zygote without scipy, then
     the code that names it: one switch between the two zygotes."""
-    from slamcourse.batch.grade import _grading_order
+    from slamcourse.batch.grade import _grading_order, _source
     from slamcourse.batch.submission import read
 
     plain = read(make_submission(tmp_path / "plain", 41, {"basics/distance": "1"}, SOLUTION))
     uses = read(make_submission(tmp_path / "uses", 42, {}, "import scipy\n" + SOLUTION))
-    assert [_grading_order(plain, a) for a in plain.manifest.answers] == [0, 1]
-    assert [_grading_order(uses, a) for a in uses.manifest.answers] == [2]
+    assert [_grading_order(a, _source(plain, a)) for a in plain.manifest.answers] == [0, 1]
+    assert [_grading_order(a, _source(uses, a)) for a in uses.manifest.answers] == [2]

@@ -970,3 +970,45 @@ def test_a_reusing_pool_forks_each_worker_from_the_zygote_its_source_needs(
         reusing.close()
         single.close()
         pool_module._close_ahead()
+
+
+def test_a_pool_told_what_comes_forks_each_worker_ahead_as_the_next_take_needs(
+    ns_level: str,
+) -> None:
+    """A batch submission's pool knows its code exercises' limits and whether each names
+    scipy: the first worker is forked at once, each next one with the next exercise's limits
+    and from its zygote, and none after the last. A take nobody announced still gets its
+    worker; the announced ones before the one a take matches are dropped."""
+    from slamcourse.grading import pool as pool_module
+
+    big = Limits(cpu_seconds=240)
+    plan = [(None, False), (big, False), (None, True), (None, False)]
+    pool = pool_module.WorkerPool(fork=True, reuse=True, require_isolation=True)
+
+    def ahead() -> tuple[bool, Limits] | None:
+        if pool._forked is None:
+            return None
+        found = pool._forked.result()
+        assert found is not None
+        owner, worker = found
+        flavours = {z.result(): scipy for scipy, z in pool._zygotes.items() if z is not None}
+        return flavours[owner], worker.limits  # type: ignore[attr-defined]
+
+    try:
+        pool.expect(plan)
+        assert ahead() == (False, Limits())  # forked before the first take
+        seen = []
+        for limits, scipy in plan:
+            worker = pool.take(limits, scipy=scipy)
+            assert worker.limits == (limits or Limits())  # type: ignore[attr-defined]
+            worker.close()
+            seen.append(ahead())
+        assert seen == [(False, big), (True, Limits()), (False, Limits()), None]
+        pool.expect(plan)
+        pool.take(None, scipy=True).close()  # (the third: the first two are dropped)
+        assert ahead() == (False, Limits())
+        pool.take(Limits(cpu_seconds=7), scipy=False).close()  # (not announced)
+        assert ahead() == (False, Limits())  # (still the fourth)
+    finally:
+        pool.close()
+        pool_module._close_ahead()

@@ -447,17 +447,25 @@ def _grade_answer(
     )
 
 
-def _grading_order(sub: Submission, answer: Answer) -> int:
+def _source(sub: Submission, answer: Answer) -> str | None:
+    """A code answer's source, or None where it cannot be read (reported when it is graded)
+    or the answer is text."""
+    if answer.file is None:
+        return None
+    try:
+        return _text(sub.source(answer), answer.file)
+    except SlamcourseError:
+        return None
+
+
+def _grading_order(answer: Answer, source: str | None) -> int:
     """Text answers first (0), then code that does not use scipy (1), then code that does (2):
     its workers come from another zygote (:func:`~slamcourse.grading.pool.uses_scipy`)."""
     from slamcourse.grading.pool import uses_scipy
 
     if answer.file is None:
         return 0
-    try:
-        return 2 if uses_scipy(sub.source(answer).decode("utf-8", "replace")) else 1
-    except SlamcourseError:  # (reported when it is graded)
-        return 1
+    return 2 if source is not None and uses_scipy(source) else 1
 
 
 def _text(data: bytes, name: str) -> str:
@@ -628,9 +636,16 @@ def grade_submission(
             # does not use scipy, then the code that does: one switch between the two zygotes
             # (results keep the course's order)
             known = set(engine.course.exercise_ids)
-            for answer in sorted(given.values(), key=lambda a: _grading_order(sub, a)):
-                if answer.exercise in known:
-                    graded[answer.exercise] = _grade_answer(engine, sub, answer, options, shared)
+            sources = {a.exercise: _source(sub, a) for a in given.values() if a.file is not None}
+            order = sorted(
+                (a for a in given.values() if a.exercise in known),
+                key=lambda a: _grading_order(a, sources.get(a.exercise)),
+            )
+            engine.expect_code(
+                [(a.exercise, sources[a.exercise] or "") for a in order if a.file is not None]
+            )
+            for answer in order:
+                graded[answer.exercise] = _grade_answer(engine, sub, answer, options, shared)
             grades: list[ExerciseGrade] = []
             for ex in engine.course.exercise_ids:
                 if part is not None and ex not in part:

@@ -13,6 +13,8 @@ import atexit
 import contextlib
 import re
 import threading
+from collections import deque
+from collections.abc import Sequence
 from concurrent.futures import Future, ThreadPoolExecutor
 
 from slamcourse.errors import SandboxError
@@ -190,6 +192,7 @@ class WorkerPool:
         self._lock = threading.Lock()
         self._spare: Future[Worker] | None = None
         self._spawner: ThreadPoolExecutor | None = None
+        self._upcoming: deque[tuple[Limits | None, bool]] | None = None  # see expect()
 
     def _spawn_later(self) -> Future[Worker]:
         if self._spawner is None:
@@ -269,17 +272,55 @@ class WorkerPool:
             worker = again.result()
         return worker
 
+    def expect(self, upcoming: Sequence[tuple[Limits | None, bool]]) -> None:
+        """The workers the next takes of this pool will ask for, in order: ``(limits,
+        scipy)`` as :meth:`take` gets them (a batch submission's code exercises). Each worker
+        forked ahead is then forked with the limits, and from the zygote, that the next take
+        needs, and none after the last. Guessing (the same as the last take) wasted 4–5 forked
+        workers per complete submission: three exercises whose process limits differ from the
+        one before, the switch to the zygote with scipy, and the end; each cost a fork, a
+        cgroup join and an exit (~5 ms of CPU), and the take that found no worker ready waited
+        for one to be forked (a kernel grace period: ~10 ms). A take that asks for something
+        else drops the expected workers before the one it matches (an answer graded without a
+        worker). The first one is forked at once (a batch grades a submission's text answers
+        meanwhile)."""
+        with self._lock:
+            self._upcoming = deque((limits, self._scipy(scipy)) for limits, scipy in upcoming)
+            if self._upcoming and self.fork and self._forked is None:
+                limits, scipy = self._upcoming[0]
+                if self._spawner is None:
+                    self._spawner = ThreadPoolExecutor(
+                        max_workers=1, thread_name_prefix="sandbox-spawn"
+                    )
+                pending = self._zygote_later(scipy)
+                self._forked = self._spawner.submit(self._fork_ahead, pending, limits)
+
+    def _next_after(self, limits: Limits | None, scipy: bool) -> tuple[Limits | None, bool] | None:
+        """What to fork ahead after a take of ``(limits, scipy)``: the next expected worker
+        (:meth:`expect`), none after the last, or, with nothing expected, the same again.
+        Call with ``_lock``."""
+        upcoming = self._upcoming
+        if upcoming is None:
+            return limits, scipy
+        if (limits, scipy) in upcoming:
+            while upcoming.popleft() != (limits, scipy):
+                pass
+        return upcoming[0] if upcoming else None
+
     def _take_forked(self, limits: Limits | None, scipy: bool) -> Worker:
         """A worker forked by this pool's zygote; the next one is forked at once, in the
-        background, with the same limits, so that joining its cgroups (which can wait for a
-        kernel grace period of several milliseconds) and its first frame overlap the exercise
-        graded meanwhile. It serves the next exercise whose limits differ only in what the
-        grader keeps (time budgets: :meth:`~slamcourse.sandbox.Worker.adopt_limits`), as
-        most exercises' do; otherwise (or when it came from the other zygote) it is closed
-        and a worker forked for that exercise."""
+        background, so that joining its cgroups (which can wait for a kernel grace period of
+        several milliseconds) and its first frame overlap the exercise graded meanwhile: with
+        the limits and from the zygote the next take needs (:meth:`expect`), else with the
+        same limits from the same zygote. It serves the next exercise whose limits differ
+        only in what the grader keeps (time budgets:
+        :meth:`~slamcourse.sandbox.Worker.adopt_limits`); otherwise (or when it came from
+        the other zygote) it is closed and a worker forked for that exercise."""
         with self._lock:
             pending = self._zygote_later(scipy)
             spare, self._forked = self._forked, None
+            following = self._next_after(limits, scipy)
+            ahead = None if following is None else self._zygote_later(following[1])
         zygote = pending.result()
         worker = None
         if spare is not None:
@@ -293,13 +334,15 @@ class WorkerPool:
         if worker is None:
             worker = zygote.worker(limits)
         with self._lock:
-            if self._spawner is not None and self._zygotes.get(scipy) is pending:
-                self._forked = self._spawner.submit(self._fork_ahead, zygote, limits)
+            replaced = following is None or self._zygotes.get(following[1]) is not ahead
+            if following is not None and ahead is not None and not replaced and self._spawner:
+                self._forked = self._spawner.submit(self._fork_ahead, ahead, following[0])
         return worker
 
     @staticmethod
-    def _fork_ahead(zygote: Zygote, limits: Limits | None) -> tuple[Zygote, Worker] | None:
+    def _fork_ahead(pending: Future[Zygote], limits: Limits | None) -> tuple[Zygote, Worker] | None:
         try:
+            zygote = pending.result()
             worker = zygote.worker(limits)
             worker.wait_ready()
         except SandboxError:
