@@ -584,13 +584,11 @@ class Engine:
         """The code exercises this engine will grade next, in order, each with its source (a
         batch submission's): its pool forks each worker ahead with what the next one needs
         (:meth:`~slamcourse.grading.pool.WorkerPool.expect`)."""
-        from slamcourse.grading.pool import uses_scipy
-
         upcoming = []
         for exercise_id, source in answers:
             spec = self.exercise(exercise_id)
             if spec.kind == "code":
-                upcoming.append((spec.options.sandbox_limits(), uses_scipy(source)))
+                upcoming.append(spec.options.worker_request(source))
         with self._pool_lock:
             pool = self._pool
         if pool is not None and pool.fork:

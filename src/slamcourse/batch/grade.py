@@ -47,7 +47,7 @@ from slamcourse.batch.submission import (
     read,
 )
 from slamcourse.errors import SlamcourseError, UsageError
-from slamcourse.grading.testset import SharedTests, TestSet
+from slamcourse.grading.testset import SharedTests
 
 if TYPE_CHECKING:
     from slamcourse.engine import Engine
@@ -233,19 +233,15 @@ def _shared_tests(path: str | None, options: GradeOptions) -> SharedTests:
     return _SHARED[key]
 
 
-def build_tests(
-    course: Path | None, exercise_id: str, secret: str, runs: int, out: str | None = None
-) -> TestSet | str:
+def build_tests(course: Path | None, exercise_id: str, secret: str, runs: int, out: str) -> str:
     """One exercise's test set for a batch (run in a grading process): written to ``out`` for
     the other processes, which read it when they first need it, and kept by this one (returns
-    ``out``); without ``out``, returned."""
+    ``out``)."""
     from slamcourse.course.locate import course_root
 
     spec = _course(course_root(course)).exercise(exercise_id)
     tests = SharedTests(secret, runs).get(spec)
     tests.encode_chunks(tuple(spec.options.signature))  # (sent with the set)
-    if out is None:
-        return tests
     SharedTests.write(tests, Path(out))
     return out
 
@@ -801,7 +797,7 @@ def _grade_all(
             }
             for built in as_completed(builds):
                 with contextlib.suppress(Exception):  # left to each submission to report
-                    shared.files[builds[built]] = str(built.result())
+                    shared.files[builds[built]] = built.result()
             for computed in as_completed(answers):
                 with contextlib.suppress(Exception):  # (recomputed where needed, and reported)
                     shared.answers.update(computed.result())

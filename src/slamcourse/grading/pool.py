@@ -194,10 +194,14 @@ class WorkerPool:
         self._spawner: ThreadPoolExecutor | None = None
         self._upcoming: deque[tuple[Limits | None, bool]] | None = None  # see expect()
 
-    def _spawn_later(self) -> Future[Worker]:
+    def _own_spawner(self) -> ThreadPoolExecutor:
+        """This pool's spawning thread, started when first needed. Call with ``_lock``."""
         if self._spawner is None:
             self._spawner = ThreadPoolExecutor(max_workers=1, thread_name_prefix="sandbox-spawn")
-        return self._spawner.submit(
+        return self._spawner
+
+    def _spawn_later(self) -> Future[Worker]:
+        return self._own_spawner().submit(
             Worker.spawn, limits=self.limits, require_isolation=self.require_isolation
         )
 
@@ -215,14 +219,12 @@ class WorkerPool:
             zygote = _usable(_kept(flavour))  # reset after a learner
         if zygote is None:
             zygote = _usable(_zygote_ahead(flavour))  # started ahead
-        if self._spawner is None:
-            self._spawner = ThreadPoolExecutor(max_workers=1, thread_name_prefix="sandbox-spawn")
         if zygote is None:
             if self.reuse:  # it may outlive this pool (and this pool's spawning thread)
                 with _AHEAD_LOCK:
                     spawner = _lifelong_spawner()
             else:
-                spawner = self._spawner
+                spawner = self._own_spawner()
             zygote = spawner.submit(
                 Zygote.spawn, require_isolation=self.require_isolation, preload=_preload(scipy)
             )
@@ -250,11 +252,7 @@ class WorkerPool:
             return self._take_forked(limits, self._scipy(scipy))
         if limits is not None and limits != self.limits:
             with self._lock:
-                if self._spawner is None:
-                    self._spawner = ThreadPoolExecutor(
-                        max_workers=1, thread_name_prefix="sandbox-spawn"
-                    )
-                own = self._spawner.submit(
+                own = self._own_spawner().submit(
                     Worker.spawn, limits=limits, require_isolation=self.require_isolation
                 )
             return own.result()
@@ -288,12 +286,8 @@ class WorkerPool:
             self._upcoming = deque((limits, self._scipy(scipy)) for limits, scipy in upcoming)
             if self._upcoming and self.fork and self._forked is None:
                 limits, scipy = self._upcoming[0]
-                if self._spawner is None:
-                    self._spawner = ThreadPoolExecutor(
-                        max_workers=1, thread_name_prefix="sandbox-spawn"
-                    )
                 pending = self._zygote_later(scipy)
-                self._forked = self._spawner.submit(self._fork_ahead, pending, limits)
+                self._forked = self._own_spawner().submit(self._fork_ahead, pending, limits)
 
     def _next_after(self, limits: Limits | None, scipy: bool) -> tuple[Limits | None, bool] | None:
         """What to fork ahead after a take of ``(limits, scipy)``: the next expected worker
@@ -333,10 +327,9 @@ class WorkerPool:
                     candidate.close()
         if worker is None:
             worker = zygote.worker(limits)
-        with self._lock:
-            replaced = following is None or self._zygotes.get(following[1]) is not ahead
-            if following is not None and ahead is not None and not replaced and self._spawner:
-                self._forked = self._spawner.submit(self._fork_ahead, ahead, following[0])
+        with self._lock:  # (unless its zygote was replaced meanwhile)
+            if following and ahead and self._zygotes.get(following[1]) is ahead:
+                self._forked = self._own_spawner().submit(self._fork_ahead, ahead, following[0])
         return worker
 
     @staticmethod

@@ -68,6 +68,15 @@ class CodeOptions:
         overrides: dict[str, Any] = dict(self.limits)  # whole numbers where Limits wants int
         return Limits(**overrides) if overrides else None
 
+    def worker_request(self, source: str) -> tuple[Any, bool]:
+        """What a check of ``source`` asks its worker factory for: the limits
+        (:meth:`sandbox_limits`) and whether the source names scipy
+        (:func:`~slamcourse.grading.pool.uses_scipy`). A batch announces the same ahead
+        (:meth:`~slamcourse.engine.Engine.expect_code`), so it is computed here only."""
+        from slamcourse.grading.pool import uses_scipy
+
+        return self.sandbox_limits(), uses_scipy(source)
+
     def may_run_long(self) -> bool:
         """Whether the exercise gives a learner's function more time than the sandbox's
         defaults (a whole data set): how long its check takes then depends most on the
@@ -275,7 +284,6 @@ class CodeKind(Kind):
         from slamcourse.answers.text import unreadable_at
         from slamcourse.errors import GraderError
         from slamcourse.grading import testset
-        from slamcourse.grading.pool import uses_scipy
         from slamcourse.sandbox import Worker
 
         bad = unreadable_at(source)
@@ -287,12 +295,12 @@ class CodeKind(Kind):
         if len(source.encode("utf-8", "replace")) > MAX_SOURCE_BYTES:
             return Verdict.unreadable(f"{filename} is larger than {MAX_SOURCE_BYTES // 1024} KiB")
         opts: CodeOptions = spec.options
-        limits = opts.sandbox_limits()
+        limits, scipy = opts.worker_request(source)
         timing = [0.0]  # seconds inside the learner's calls
         try:
             # start the interpreter first: it imports numpy while the test set is built
             if spawn is not None:
-                worker = spawn(limits, scipy=uses_scipy(source))
+                worker = spawn(limits, scipy=scipy)
             else:
                 worker = Worker.spawn(limits=limits, require_isolation=require_isolation)
             with worker:
