@@ -156,17 +156,19 @@ def compare(
     judge: Judge | None = None,
     kwargs: dict[str, Any] | None = None,
     want_array: Any = None,
+    got_array: Any = None,
 ) -> Mismatch | None:
     """``None`` when ``got`` (plain data from the learner) matches ``want`` (the reference);
     ``plain``: ``want`` is plain data already (a test set's expected values are). With a
     ``judge``, ``got`` must only have ``spec``'s form (the reference's shape, finite numbers);
     the judge, called with the input ``kwargs``, then decides instead of the tolerance.
     ``want_array``: ``numeric_array(want)``, when the caller keeps it (a test set's case
-    converts its expected value once per batch, not once per learner)."""
+    converts its expected value once per batch, not once per learner). ``got_array``:
+    ``numeric_array(got)``, where ``got`` came as a float array (``CallResult.array``)."""
     if not plain:
         want = to_plain(want)
     if judge is not None:
-        return _judged(spec, got, want, judge, kwargs or {}, want_array)
+        return _judged(spec, got, want, judge, kwargs or {}, want_array, got_array)
     if isinstance(spec, tuple):
         if not isinstance(got, list):
             return Mismatch(f"expected {describe(spec)}, got {_what(got)}")
@@ -178,7 +180,7 @@ def compare(
                 return Mismatch(f"value {i + 1} of the tuple: {problem}")
         return None
     if spec == "array":
-        return _array(got, want, tol, want_array)
+        return _array(got, want, tol, want_array, got_array)
     problem = _scalar(spec, got, want, tol)
     return Mismatch(problem) if problem else None
 
@@ -190,11 +192,12 @@ def _judged(
     judge: Judge,
     kwargs: dict[str, Any],
     want_array: Any = None,
+    got_array: Any = None,
 ) -> Mismatch | None:
     from slamcourse.errors import GraderError
 
     if spec == "array":
-        form = _array(got, want, _ANY_VALUE, want_array)
+        form = _array(got, want, _ANY_VALUE, want_array, got_array)
     elif isinstance(spec, tuple):
         if not isinstance(got, list) or len(got) != len(spec):
             form = compare(spec, got, want, _ANY_VALUE)
@@ -212,7 +215,10 @@ def _judged(
         return form
     # the judge gets copies: it cannot change the input or the value the feedback shows (a
     # rectangular array of numbers, checked above, is copied at numpy's speed)
-    mine = _copy_array(got) if spec == "array" else copy.deepcopy(got)
+    if spec == "array":  # (a float array's lists made again: the same floats, fresh)
+        mine = got_array.tolist() if got_array is not None else _copy_array(got)
+    else:
+        mine = copy.deepcopy(got)
     try:
         verdict = judge(mine, want, copy.deepcopy(kwargs))
     except Exception as exc:
@@ -336,11 +342,13 @@ def numeric_array(value: Any) -> Any:
 _SMALL = 16  # a 1-D value this short is compared in Python: numpy's call overhead dominates
 
 
-def _close_arrays(got: Any, want: Any, tol: Tolerance, want_array: Any = None) -> bool:
+def _close_arrays(
+    got: Any, want: Any, tol: Tolerance, want_array: Any = None, got_array: Any = None
+) -> bool:
     """The common case at numpy speed: ``got`` is a rectangular array of finite numbers (no
     booleans) of ``want``'s shape within the tolerance. False means "look closely" (the walk
     below finds the entry and says what is wrong), not necessarily a mismatch.
-    ``want_array``: ``numeric_array(want)`` if the caller has it."""
+    ``want_array``: ``numeric_array(want)`` if the caller has it; ``got_array`` likewise."""
     import numpy as np
 
     if not isinstance(got, list) or not isinstance(want, list):
@@ -356,7 +364,7 @@ def _close_arrays(got: Any, want: Any, tol: Tolerance, want_array: Any = None) -
             )
         except OverflowError:  # an int beyond floats: look closely
             return False
-    g = numeric_array(got)
+    g = numeric_array(got) if got_array is None else got_array
     w = numeric_array(want) if want_array is None else want_array
     if g is None or w is None or g.shape != w.shape:  # look closely
         return False
@@ -365,8 +373,10 @@ def _close_arrays(got: Any, want: Any, tol: Tolerance, want_array: Any = None) -
     return bool((np.abs(g - w) <= tol.atol + tol.rtol * np.abs(w)).all())
 
 
-def _array(got: Any, want: Any, tol: Tolerance, want_array: Any = None) -> Mismatch | None:
-    if _close_arrays(got, want, tol, want_array):
+def _array(
+    got: Any, want: Any, tol: Tolerance, want_array: Any = None, got_array: Any = None
+) -> Mismatch | None:
+    if _close_arrays(got, want, tol, want_array, got_array):
         return None
     want_shape, got_shape = _shape(want), _shape(got)
     if got_shape is None:
@@ -389,3 +399,101 @@ def _array(got: Any, want: Any, tol: Tolerance, want_array: Any = None) -> Misma
         return Mismatch(f"entry {where}: {problem}") if problem else None
 
     return walk(got, want, ())
+
+
+def accepted(
+    spec: tuple[str, ...] | str,
+    values: list[Any],
+    wants: list[Any],
+    tol: Tolerance,
+    want_arrays: list[Any] | None = None,
+    got_arrays: list[Any] | None = None,
+) -> list[bool]:
+    """For many learner values at once (plain data, each with its reference value in
+    ``wants``): True where :func:`compare` certainly returns ``None`` (no judge), decided at
+    numpy's speed over the whole group. False means "not shown here": the value is compared
+    one by one, which gives the verdict and its message (a group whose values do not all have
+    one form, e.g. a ragged or boolean entry, is left to that, whole). ``want_arrays``: the
+    wants' :func:`numeric_array`, where the caller keeps them (``array`` only); ``got_arrays``:
+    each value's, where it came as a float array (else None).
+
+    Every test here implies the one-by-one rule's acceptance, with the same floating-point
+    operations: ``|g − w| ≤ atol + rtol·|w|`` on float64, an angle's difference taken as is only
+    when it is already inside (−π, π) and its reference inside [−π, π] (where wrapping changes
+    neither)."""
+    import numpy as np
+
+    n = len(values)
+    none = [False] * n
+    if not n or len(wants) != n:
+        return none
+    try:
+        if spec == "array":
+            if want_arrays is None:
+                want_arrays = [numeric_array(w) for w in wants]
+            if set(map(type, values)) != {list} or any(w is None for w in want_arrays):
+                return none  # (each value a list, not a scalar; each reference an array)
+            alike: dict[tuple[int, ...], list[int]] = {}  # stacked by the reference's shape
+            for i, w in enumerate(want_arrays):
+                alike.setdefault(w.shape, []).append(i)
+            out = none[:]
+            for shape, where in alike.items():
+                if got_arrays is not None and all(got_arrays[i] is not None for i in where):
+                    arrays = [got_arrays[i] for i in where]
+                    if any(a.shape != shape for a in arrays):
+                        continue
+                    got = np.stack(arrays)
+                else:
+                    got = numeric_array([values[i] for i in where])
+                if got is None or got.shape != (len(where), *shape):
+                    continue
+                want = np.stack([want_arrays[i] for i in where])
+                ok = _within(got, want, "number", tol).reshape(len(where), -1).all(axis=1)
+                for i, yes in zip(where, ok.tolist(), strict=True):
+                    out[i] = yes
+            return out
+        if isinstance(spec, tuple):
+            if "boolean" in spec or not all(
+                type(v) is list and len(v) == len(spec) for v in values
+            ):
+                return none
+            got, want = numeric_array(values), numeric_array(wants)
+            if (
+                got is None
+                or want is None
+                or got.shape != want.shape
+                or want.shape != (n, len(spec))
+            ):
+                return none
+            ok = np.ones(n, dtype=bool)
+            for k, kind in enumerate(spec):
+                ok &= _within(got[:, k], want[:, k], kind, tol)
+            return ok.tolist()
+        if spec == "boolean":
+            return [type(g) is bool and g == bool(w) for g, w in zip(values, wants, strict=True)]
+        if not {int, float}.issuperset(map(type, values)) or not {int, float}.issuperset(
+            map(type, wants)
+        ):
+            return none
+        cleared: list[bool] = _within(
+            np.array(values, dtype=float), np.array(wants, dtype=float), spec, tol
+        ).tolist()
+        return cleared
+    except (TypeError, ValueError, OverflowError):  # e.g. a whole number beyond the floats
+        return none
+
+
+def _within(got: Any, want: Any, kind: str, tol: Tolerance) -> Any:
+    """Elementwise: ``got`` (float array) certainly accepted for ``want`` as a ``kind``."""
+    import numpy as np
+
+    finite = np.isfinite(got) & np.isfinite(want)
+    with np.errstate(invalid="ignore", over="ignore"):
+        if kind == "integer":
+            whole = np.rint(got)
+            return finite & (got == whole) & (whole == np.rint(want))
+        diff = np.abs(got - want)
+        ok = finite & (diff <= tol.atol + tol.rtol * np.abs(want))
+        if kind == "angle":
+            ok &= (diff < math.pi) & (np.abs(want) <= math.pi)
+    return ok

@@ -40,13 +40,16 @@ from typing import Any
 from slamcourse.course.model import ExerciseSpec, Tolerance
 from slamcourse.errors import GraderError
 from slamcourse.grading.properties import MAX_RECORDED, Failure, Outcome, exercise_seed
-from slamcourse.grading.returns import compare, to_plain
+from slamcourse.grading.returns import accepted, compare, to_plain
 from slamcourse.sandbox import CallResult
 
 BOUNDARY_BASES = 12
 """Drawn inputs (after the examples) the boundary transforms may start from."""
 CHUNK = 64
 """Inputs sent to the sandbox in one request."""
+GROUP = 16
+"""Results judged together as they stream in (:func:`~slamcourse.grading.returns.accepted`
+clears a group of right values at once; the rest are judged one by one)."""
 MAX_AGREED = 60
 """Inputs the learner got right that a misconception must get right too (examples and
 boundaries first)."""
@@ -372,35 +375,59 @@ def run_cases(
         calls = Calls(_arguments(chunk, signature))
         if whole:  # the same chunks for every learner: encoded for the sandbox once
             calls.encoded = tests.encoded_chunk(start, tuple(signature), calls)
-        judged: dict[int, Failure | None] = {}
-        seen = [len(outcome.failures)]
+        judged: list[Failure | None] = []  # the verdicts of the first results, in order
+        received: list[CallResult] = []
+        stop_at: list[int] = []  # where the last failure wanted is (the worker stops there)
+        seen = [len(outcome.failures)]  # failures so far, this chunk's judged ones included
+
+        def judge_upto(
+            results: Sequence[CallResult],
+            chunk: list[Case] = chunk,
+            judged: list[Failure | None] = judged,
+            stop_at: list[int] = stop_at,
+            seen: list[int] = seen,
+        ) -> None:
+            """Judge ``results`` from the first not judged yet, as one group."""
+            lo = len(judged)
+            judged.extend(
+                _judge_group(
+                    chunk[lo : len(results)], results[lo:], signature, returns, tolerance,
+                    allowed, judge,
+                )
+            )  # fmt: skip
+            for k in range(lo, len(judged)):
+                if judged[k] is not None and not stop_at:
+                    seen[0] += 1
+                    if seen[0] >= max_failures:
+                        stop_at.append(k)
 
         def enough(
             index: int,
             result: CallResult,
-            chunk: list[Case] = chunk,
-            judged: dict[int, Failure | None] = judged,
-            seen: list[int] = seen,
+            received: list[CallResult] = received,
+            judged: list[Failure | None] = judged,
+            stop_at: list[int] = stop_at,
         ) -> bool:
-            """Judged as the results stream in: the last failure wanted ends the chunk there
-            (the worker is stopped rather than left computing inputs nobody will read)."""
-            judged[index] = _judge(
-                chunk[index], result, signature, returns, tolerance, allowed, judge
-            )
-            seen[0] += judged[index] is not None
-            return seen[0] >= max_failures
+            """Judged in groups as the results stream in (a call that did not return a value
+            untouched at once: it fails, or may): once the last failure wanted is among them,
+            the worker is stopped (not left computing inputs nobody will read)."""
+            received.append(result)
+            if len(received) - len(judged) >= GROUP or result.status != "ok" or result.mutated:
+                judge_upto(received)
+            return bool(stop_at)
 
         if stop_worker:  # (not when the caller still needs the worker, e.g. to shrink)
             calls.enough = enough
         results = call_many(calls)
+        if len(judged) < len(results):
+            judge_upto(results)
+        if stop_worker and stop_at:  # read as if the worker had stopped right there
+            results = results[: stop_at[0] + 1]
         stop = False
         for index, (case, result) in enumerate(zip(chunk, results, strict=False)):
             outcome.examples += 1
             outcome.call_seconds += result.seconds or 0.0
-            if index in judged:
-                failure = judged[index]
-            else:
-                failure = _judge(case, result, signature, returns, tolerance, allowed, judge)
+            failure = judged[index]
             if result.output_cut:
                 outcome.output_cut = True
             if failure is None:
@@ -427,6 +454,38 @@ def run_cases(
         if len(outcome.failures) >= max_failures:
             break
     return outcome, failed_cases
+
+
+def _judge_group(
+    cases: Sequence[Case],
+    results: Sequence[CallResult],
+    signature: Sequence[str],
+    returns: Any,
+    tolerance: Tolerance,
+    allowed: set[str],
+    judge: Any = None,
+) -> list[Failure | None]:
+    """:func:`_judge` of each result, the values :func:`accepted` clears at once (those of a
+    finished call that changed no argument) without comparing them one by one."""
+    clear = [False] * len(results)
+    if judge is None:
+        ok = [i for i, r in enumerate(results) if r.status == "ok" and not r.mutated]
+        if ok:
+            arrays = [cases[i].expected_array for i in ok] if returns == "array" else None
+            shown = accepted(
+                returns,
+                [results[i].value for i in ok],
+                [cases[i].expected for i in ok],
+                tolerance,
+                arrays,
+                [results[i].array for i in ok] if returns == "array" else None,
+            )
+            for i, yes in zip(ok, shown, strict=True):
+                clear[i] = yes
+    return [
+        None if cleared else _judge(case, result, signature, returns, tolerance, allowed, judge)
+        for case, result, cleared in zip(cases, results, clear, strict=False)
+    ]
 
 
 def _judge(
@@ -469,6 +528,7 @@ def _judge(
         judge=judge,
         kwargs=kwargs,
         want_array=case.expected_array if returns == "array" else None,
+        got_array=getattr(result, "array", None) if returns == "array" else None,
     )
     if mismatch is not None:
         return Failure(

@@ -229,6 +229,17 @@ def value_of(frame: dict[str, Any]) -> Any:
     return value if frame.get("$plain") is True else plain_value(value)
 
 
+def value_and_array(frame: dict[str, Any]) -> tuple[Any, Any]:
+    """:func:`value_of`, and the value as a float64 ndarray when it came as one (a float array
+    sent as bytes, not empty: its lists have its shape), else None; the grader compares the
+    array without converting the lists back."""
+    value = frame["value"]
+    if type(value) is dict and len(value) == 2 and "$f8" in value:
+        array = float_ndarray(value)
+        return array.tolist(), array if array.size else None
+    return value_of(frame), None
+
+
 _LEAVES = frozenset({type(None), bool, int, float, str})
 
 
@@ -259,6 +270,12 @@ def float_array(marker: dict[str, Any], depth: int = 0) -> list[Any]:
     """The nested lists of a float array sent as bytes: ``{"$f8": "<base64 of float64 values,
     little-endian, C order>", "shape": [d1, d2, ...]}``, checked strictly (canonical base64, a
     shape of at least one non-negative size that the bytes fill exactly)."""
+    values: list[Any] = float_ndarray(marker, depth).tolist()
+    return values
+
+
+def float_ndarray(marker: dict[str, Any], depth: int = 0) -> Any:
+    """:func:`float_array`'s values as a read-only float64 ndarray of the marker's shape."""
     import numpy as np
 
     data, shape = marker.get("$f8"), marker.get("shape")
@@ -276,10 +293,9 @@ def float_array(marker: dict[str, Any], depth: int = 0) -> list[Any]:
     if len(raw) != 8 * math.prod(shape):
         raise ProtocolViolation("float array whose bytes do not fill its shape")
     try:
-        values: list[Any] = np.frombuffer(raw, dtype="<f8").reshape(shape).tolist()
+        return np.frombuffer(raw, dtype="<f8").reshape(shape)
     except (ValueError, OverflowError):  # e.g. an empty array of a dimension numpy cannot hold
         raise ProtocolViolation("float array of an impossible shape") from None
-    return values
 
 
 def text_field(frame: dict[str, Any], key: str, limit: int = MAX_TEXT) -> str:

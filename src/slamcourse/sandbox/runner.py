@@ -34,7 +34,7 @@ import time
 import weakref
 from collections.abc import Sequence
 from concurrent.futures import Future, ThreadPoolExecutor
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, fields, replace
 from types import TracebackType
 from typing import Any, Literal
 
@@ -60,7 +60,7 @@ from slamcourse.sandbox.protocol import (
     int_or_none,
     names_field,
     text_field,
-    value_of,
+    value_and_array,
 )
 
 LoadStatus = Literal[
@@ -143,10 +143,29 @@ class CallResult:
     flooded: bool = False
     """This call alone printed more than ``Limits.muted_after``: :meth:`Worker.call_many`
     stopped after it."""
+    array: Any = field(default=None, compare=False, repr=False)
+    """``value`` as a float64 ndarray when it came as one (a float array sent as its bytes),
+    else None: compared as it is, not converted back from ``value``'s lists."""
 
     @property
     def ok(self) -> bool:
         return self.status == "ok"
+
+    @classmethod
+    def returned(
+        cls, value: Any, seconds: float, output_cut: bool, array: Any = None
+    ) -> CallResult:
+        """``CallResult("ok", value=value, seconds=seconds, output_cut=output_cut,
+        array=array)``, made without the frozen ``__init__``'s cost per field (the reply of
+        almost every call)."""
+        result = object.__new__(cls)
+        result.__dict__.update(
+            _RETURNED, value=value, seconds=seconds, output_cut=output_cut, array=array
+        )
+        return result
+
+
+_RETURNED = {f.name: f.default for f in fields(CallResult)} | {"status": "ok"}
 
 
 @dataclass
@@ -528,50 +547,65 @@ class Worker:
                 request["check"] = False
             payload = encode_request({"id": first, **request})
         results: list[CallResult] = []
-        for index in range(len(calls)):
-            more = index + 1 < len(calls)
-            out = self._exchange(
-                payload if index == 0 else None, first + index, self._limits.call_seconds,
-                more=more,
-            )  # fmt: skip
-            if out.status != "frame":
-                self._fail(out.status, out.message, out.exit_code)
-                results.append(
-                    CallResult(
-                        out.status,
-                        error=out.message,
-                        stdout=out.stdout,
-                        stderr=out.stderr,
-                        seconds=out.seconds,
-                        exit_code=out.exit_code,
-                        output_cut=out.output_cut,
+        count = len(calls)
+        index = 0
+        while index < count:
+            # the frames the worker has already sent for this batch (but its last) are taken
+            # together; anything else (the first reply, the last, a call that printed, or
+            # nothing read yet) goes through the full exchange, one frame
+            ready = (
+                self._ready_frames(first + index, count - 1 - index)
+                if index and not self._carry[0] and not self._carry[1]
+                else []
+            )
+            outs: list[_Outcome | None] = [None] * len(ready)
+            if not ready:
+                out = self._exchange(
+                    payload if index == 0 else None, first + index, self._limits.call_seconds,
+                    more=index + 1 < count,
+                )  # fmt: skip
+                if out.status != "frame":
+                    self._fail(out.status, out.message, out.exit_code)
+                    results.append(
+                        CallResult(
+                            out.status,
+                            error=out.message,
+                            stdout=out.stdout,
+                            stderr=out.stderr,
+                            seconds=out.seconds,
+                            exit_code=out.exit_code,
+                            output_cut=out.output_cut,
+                        )
                     )
-                )
-                return results
-            assert out.frame is not None
-            try:
-                result = self._call_result(out.frame, out, len(calls[index]))
-            except ProtocolViolation as exc:
-                self._fail("protocol_error", f"the worker broke the protocol: {exc}")
-                results.append(
-                    CallResult(
-                        "protocol_error",
-                        error=self._dead[1] if self._dead else "",
-                        stdout=out.stdout,
-                        stderr=out.stderr,
-                        seconds=out.seconds,
-                        output_cut=out.output_cut,
+                    return results
+                assert out.frame is not None
+                ready, outs = [out.frame], [out]
+            for frame, read in zip(ready, outs, strict=True):
+                out = read or _Outcome("frame", frame, "", "", "", 0.0, None, self._output_cut)
+                try:
+                    result = self._call_result(frame, out, len(calls[index]))
+                except ProtocolViolation as exc:
+                    self._fail("protocol_error", f"the worker broke the protocol: {exc}")
+                    results.append(
+                        CallResult(
+                            "protocol_error",
+                            error=self._dead[1] if self._dead else "",
+                            stdout=out.stdout,
+                            stderr=out.stderr,
+                            seconds=out.seconds,
+                            output_cut=out.output_cut,
+                        )
                     )
-                )
-                return results
-            if out.frame.get("stop") is True:
-                results.append(replace(result, flooded=True))
-                break
-            results.append(result)
-            if enough is not None and index + 1 < len(calls) and enough(index, result):
-                # the caller has what it needs: stop the worker mid-batch, not read on
-                self._fail("crashed", "stopped by the grader after the results it needed")
-                break
+                    return results
+                if frame.get("stop") is True:
+                    results.append(replace(result, flooded=True))
+                    return results
+                results.append(result)
+                if enough is not None and index + 1 < count and enough(index, result):
+                    # the caller has what it needs: stop the worker mid-batch, not read on
+                    self._fail("crashed", "stopped by the grader after the results it needed")
+                    return results
+                index += 1
         return results
 
     def close(self) -> None:
@@ -627,6 +661,18 @@ class Worker:
 
     def _call_result(self, frame: dict[str, Any], out: _Outcome, arity: int) -> CallResult:
         status = frame["status"]
+        if (
+            status == "ok"
+            and "value" in frame
+            and "mutated" not in frame
+            and frame.get("dropped") == 0
+            and type(frame["dropped"]) is int
+            and not out.stdout
+            and not out.stderr
+        ):  # the common reply: a value, nothing printed, dropped or changed
+            self._output_cut = self._output_cut or out.output_cut
+            value, array = value_and_array(frame)
+            return CallResult.returned(value, out.seconds, self._output_cut, array)
         mutated = frame.get("mutated", ())  # (absent: nothing changed, the common reply)
         if mutated != () and (
             type(mutated) is not list
@@ -643,7 +689,8 @@ class Worker:
         if status == "ok":
             if "value" not in frame:
                 raise ProtocolViolation("ok reply without a value")
-            return CallResult("ok", value=value_of(frame), **common)
+            value, array = value_and_array(frame)
+            return CallResult("ok", value=value, array=array, **common)
         if status == "raised":
             return CallResult(
                 "raised", error=text_field(frame, "error"), frames=frames_field(frame), **common
@@ -714,10 +761,6 @@ class Worker:
     ) -> _Outcome:
         """Send ``payload`` (None: just wait) and wait for the frame with ``request_id``;
         ``more``: further frames of the same request may follow it."""
-        if payload is None and more and not self._carry[0] and not self._carry[1]:
-            ready = self._buffered_frame(request_id)
-            if ready is not None:
-                return ready
         limits = self._limits
         start = time.monotonic()
         per_request = start + seconds
@@ -884,28 +927,38 @@ class Worker:
             f"the reply is larger than the {limits.frame_bytes}-byte frame limit",
         )
 
-    def _buffered_frame(self, request_id: int) -> _Outcome | None:
-        """The batch's next frame when it is already read and its call printed nothing (the
-        common case while the worker runs ahead of the grader): what :meth:`_exchange` would
-        return for it, without waiting or reading output pipes. None (nothing consumed) for
-        anything else, which :meth:`_exchange` then handles in full."""
-        newline = self._buffer.find(b"\n")
-        if newline < 0 or newline > self._limits.frame_bytes:
-            return None
-        try:
-            frame = decode_frame(bytes(self._buffer[:newline]))
-        except ProtocolViolation:
-            return None
-        if (
-            frame["id"] != request_id
-            or frame.get("out") != self._taken[0]
-            or frame.get("err") != self._taken[1]
-            or type(frame.get("out")) is not int
-            or type(frame.get("err")) is not int
-        ):
-            return None
-        del self._buffer[: newline + 1]
-        return _Outcome("frame", frame, "", "", "", 0.0, None, self._output_cut)
+    def _ready_frames(self, request_id: int, most: int) -> list[dict[str, Any]]:
+        """The batch's next frames (from ``request_id``, at most ``most``) that are already
+        read and whose calls printed nothing (the common case while the worker runs ahead of
+        the grader): taken from the buffer together, what :meth:`_exchange` would return for
+        each, without waiting or reading output pipes. Stops before anything else, which
+        :meth:`_exchange` then handles in full (nothing of it consumed)."""
+        buffer = self._buffer
+        limit = self._limits.frame_bytes
+        out, err = self._taken
+        frames: list[dict[str, Any]] = []
+        start = 0
+        while len(frames) < most:
+            newline = buffer.find(b"\n", start)
+            if newline < 0 or newline - start > limit:
+                break
+            try:
+                frame = decode_frame(bytes(buffer[start:newline]))
+            except ProtocolViolation:
+                break
+            if (
+                frame["id"] != request_id + len(frames)
+                or frame.get("out") != out
+                or frame.get("err") != err
+                or type(frame.get("out")) is not int
+                or type(frame.get("err")) is not int
+            ):
+                break
+            frames.append(frame)
+            start = newline + 1
+        if start:
+            del buffer[:start]
+        return frames
 
     def _owed(self, frame: dict[str, Any], out_cap: _Capture, err_cap: _Capture) -> bool:
         """Whether output the frame's call wrote may still be in the pipes (always, for a
