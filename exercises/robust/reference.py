@@ -54,13 +54,21 @@ def intel_with_outliers(count: int) -> tuple[Matrix, list[pg.Edge]]:
     return graph.poses, [*graph.edges, *bad]
 
 
+@lru_cache(maxsize=8)
+def robust_run(kind: str, k: float, count: int) -> tuple[Matrix, list[float], list[pg.Edge]]:
+    """INTEL with ``count`` false closures, optimised by IRLS with ``kind`` (``"l2"``: plain
+    Gauss-Newton) for 30 steps: the poses, the robust cost of each step, and the edges (the
+    false closures last). Made once: an answer and the misconceptions beside it read it."""
+    poses, edges = intel_with_outliers(count)
+    x, history = rb.irls(poses, edges, kind, k, ROBUST_ITERATIONS)
+    return x, history, edges
+
+
 @lru_cache(maxsize=32)
 def survival(kind: str, k: float, count: int) -> tuple[float, float]:
-    """INTEL with ``count`` false closures, optimised by IRLS with ``kind`` (``"l2"``: plain
-    Gauss-Newton) for 30 steps: (χ² of the real edges, RMS position error in metres against the
+    """:func:`robust_run`'s (χ² of the real edges, RMS position error in metres against the
     clean optimum, poses seen from pose 0)."""
-    poses, edges = intel_with_outliers(count)
-    x, _ = rb.irls(poses, edges, kind, k, ROBUST_ITERATIONS)
+    x, _, _ = robust_run(kind, k, count)
     return pg.chi2(x, intel().edges), rb.position_error(x, clean_optimum())
 
 
@@ -155,15 +163,13 @@ def dcs_hundred_chi2() -> float:
 
 def mistake_dcs_hundred_with_outliers() -> float:
     """χ² of every edge, false closures included."""
-    poses, edges = intel_with_outliers(100)
-    x, _ = rb.irls(poses, edges, "dcs", 3.0, ROBUST_ITERATIONS)
+    x, _, edges = robust_run("dcs", 3.0, 100)
     return pg.chi2(x, edges)
 
 
 def mistake_dcs_hundred_robust_cost() -> float:
     """The robust cost ``Σ ρ`` that IRLS minimises, not the χ² of the real edges."""
-    poses, edges = intel_with_outliers(100)
-    _, history = rb.irls(poses, edges, "dcs", 3.0, ROBUST_ITERATIONS)
+    _, history, _ = robust_run("dcs", 3.0, 100)
     return history[-1]
 
 
