@@ -311,8 +311,12 @@ def test_the_browser_is_opened_on_a_private_file_and_the_log_has_no_token(
         with opener.open(url, timeout=10) as page:
             assert page.status == 200
         proc.send_signal(signal.SIGINT)  # Ctrl+C
-        proc.wait(timeout=15)
-        log = proc.stderr.read()
+        try:  # (both pipes read meanwhile: a full one would hold the server up)
+            _said, log = proc.communicate(timeout=30)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            _said, log = proc.communicate()
+            pytest.fail(f"serve did not stop within 30 s of Ctrl+C; its log ends:\n{log[-3000:]}")
         assert token not in log
         assert "GET / 303" in log and "GET / 200" in log  # paths are logged, queries never
         assert not launch.exists()  # the file holding the token goes with the server
