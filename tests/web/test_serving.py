@@ -286,6 +286,9 @@ def test_the_browser_is_opened_on_a_private_file_and_the_log_has_no_token(
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,
+        # Ctrl+C reaches it as it reaches a server started in a terminal, even when this suite
+        # runs in the background (a shell's background job, and what it starts, ignores SIGINT)
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
     )
     try:
         assert proc.stdout is not None and proc.stderr is not None
