@@ -368,8 +368,15 @@ def _command(answer: Answer) -> str:
 
 
 def _grade_answer(
-    engine: Engine, sub: Submission, answer: Answer, options: GradeOptions, shared: SharedTests
+    engine: Engine,
+    sub: Submission,
+    answer: Answer,
+    options: GradeOptions,
+    shared: SharedTests,
+    read_source: str | None = None,
 ) -> ExerciseGrade:
+    """``read_source``: the code answer's source, when the caller has read it already
+    (:func:`_source`); else it is read here, and a file that cannot be read is reported."""
     spec = engine.exercise(answer.exercise)
     chapter = engine.course.chapter_of(spec.id).number
     start = time.perf_counter()
@@ -378,7 +385,9 @@ def _grade_answer(
         if answer.file is not None:
             if spec.kind != "code":
                 raise SubmissionError(f"{spec.id} is a {spec.kind} exercise: answer it with text")
-            source = _text(sub.source(answer), answer.file)
+            source = (
+                read_source if read_source is not None else _text(sub.source(answer), answer.file)
+            )
             result = engine.submit_code(spec.id, source=source, tests=shared.get(spec))
         else:
             if spec.kind == "code":
@@ -641,7 +650,9 @@ def grade_submission(
                 [(a.exercise, sources[a.exercise] or "") for a in order if a.file is not None]
             )
             for answer in order:
-                graded[answer.exercise] = _grade_answer(engine, sub, answer, options, shared)
+                graded[answer.exercise] = _grade_answer(
+                    engine, sub, answer, options, shared, sources.get(answer.exercise)
+                )
             grades: list[ExerciseGrade] = []
             for ex in engine.course.exercise_ids:
                 if part is not None and ex not in part:

@@ -528,7 +528,7 @@ def _judge(
         judge=judge,
         kwargs=kwargs,
         want_array=case.expected_array if returns == "array" else None,
-        got_array=getattr(result, "array", None) if returns == "array" else None,
+        got_array=result.array if returns == "array" else None,
     )
     if mismatch is not None:
         return Failure(
