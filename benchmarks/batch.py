@@ -5,10 +5,13 @@ Builds a class against the bundled course as its learners would hand it in
 solutions and correct variants, partial learners answering about half with some shipped
 mutants, hostile learners whose code floods, hangs, exits, forks or raises), then in one run:
 
-1. grades the whole class with ``slamcourse grade --jobs 1`` and ``--jobs 2`` (the speed-up),
-   each run's CPU-seconds (all its processes: grader, sandboxes, workers; see ``Meter``), and
-   what that CPU allows: two cores cannot do a run's CPU-seconds in less than half of them, so
-   ``--jobs 2`` is at most ``2 × t1 / CPU2`` times faster than ``--jobs 1`` took;
+1. grades the whole class with ``slamcourse grade --jobs 1`` and ``--jobs 2`` in turn,
+   ``--pairs`` times (the speed-up: the median of the pairs' ratios, each pair measured
+   minutes apart, so that a host whose speed drifts during the run moves both of a pair;
+   the results of every run must agree), each run's CPU-seconds (all its processes: grader,
+   sandboxes, workers; see ``Meter``), and what that CPU allows: two cores cannot do a run's
+   CPU-seconds in less than half of them, so ``--jobs 2`` is at most ``2 × t1 / CPU2`` times
+   faster than ``--jobs 1`` took;
 2. reports, per complete submission: seconds (median), and the grader's overhead: the
    submission's wall time minus the time spent inside the learner's own calls;
 3. extrapolates ``--jobs 2`` to 500 complete submissions, two ways: 500 × the median complete
@@ -21,7 +24,7 @@ mutants, hostile learners whose code floods, hangs, exits, forks or raises), the
    Python work at the time (a virtual machine's cores are seldom two whole cores): the
    speed-up no ``--jobs 2`` run can exceed here, whatever it does.
 
-    python benchmarks/batch.py [--count 50] [--partial 0.1] [--hostile 0.1]
+    python benchmarks/batch.py [--count 50] [--partial 0.1] [--hostile 0.1] [--pairs 3]
 
 Goals (issue "A class graded in minutes"): 500 complete submissions ≤ 10 min on a 2-core
 machine, overhead ≤ 1 s per complete submission, ``--jobs 2`` ≥ 1.8× ``--jobs 1``. These are
@@ -33,6 +36,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import shutil
 import statistics
 import subprocess
 import sys
@@ -90,6 +94,9 @@ def main() -> None:
     parser.add_argument("--count", type=int, default=50, help="submissions in the class")
     parser.add_argument("--partial", type=float, default=0.1, help="share of partial learners")
     parser.add_argument("--hostile", type=float, default=0.1, help="share of hostile learners")
+    parser.add_argument(
+        "--pairs", type=int, default=3, help="--jobs 1 and --jobs 2 runs, in turn (median ratio)"
+    )
     args = parser.parse_args()
     env = environment()
     n_partial = round(args.count * args.partial)
@@ -107,47 +114,76 @@ def main() -> None:
     print(f"this machine now: two processes of pure Python work finish {machine:.2f}× faster "
           f"than one ({spin:.1f} s alone): no --jobs 2 run here can do better")  # fmt: skip
     meter = Meter()
+    runs: list[tuple[float, float, float, float]] = []  # (t1, cpu1, t2, cpu2) of each pair
+    seconds: list[float] = []  # each complete submission's seconds, every --jobs 1 run
+    learner: list[float] = []
+    right: list[bool] = []
+    codes: list[dict] = []
+    seconds2: list[float] = []  # ... and every --jobs 2 run
+    fixed2: list[float] = []
     try:
-        t1, cpu1, out1 = grade(paths, 1, env, meter)
-        t2, cpu2, out2 = grade(paths, 2, env, meter)
+        for pair in range(args.pairs):
+            t1, cpu1, out1 = grade(paths, 1, env, meter)
+            t2, cpu2, out2 = grade(paths, 2, env, meter)
+            one, two = results(out1), results(out2)
+            shutil.rmtree(out1, ignore_errors=True)
+            shutil.rmtree(out2, ignore_errors=True)
+            for name, data in one.items():
+                other = two[name]
+                assert data["status"] == other["status"] == "graded", (name, data.get("error"))
+                strip = lambda d: [(e["exercise"], e["status"], e["score"]) for e in d["exercises"]]  # noqa: E731
+                assert strip(data) == strip(other), f"{name}: --jobs 1 and --jobs 2 disagree"
+            runs.append((t1, cpu1, t2, cpu2))
+            print(f"pair {pair + 1}: --jobs 1 {t1:6.1f} s ({cpu1:6.1f} CPU-s), "
+                  f"--jobs 2 {t2:6.1f} s ({cpu2:6.1f} CPU-s): {t1 / t2:.2f}×")  # fmt: skip
+            sys.stdout.flush()
+            complete = [d for n, d in one.items() if n.startswith("complete")]
+            seconds += [d["seconds"] for d in complete]
+            learner += [
+                sum(e.get("learner_seconds", 0.0) for e in d["exercises"]) for d in complete
+            ]
+            right += [d["score"] == d["max_score"] for d in complete]
+            codes += [e for d in complete for e in d["exercises"] if e["kind"] == "code"]
+            seconds2 += [d["seconds"] for n, d in two.items() if n.startswith("complete")]
+            fixed2.append(t2 - sum(d["seconds"] for d in two.values()) / 2)
     finally:
         meter.close()
-    one, two = results(out1), results(out2)
-    for name, data in one.items():
-        other = two[name]
-        assert data["status"] == other["status"] == "graded", (name, data.get("error"))
-        strip = lambda d: [(e["exercise"], e["status"], e["score"]) for e in d["exercises"]]  # noqa: E731
-        assert strip(data) == strip(other), f"{name}: --jobs 1 and --jobs 2 disagree"
+        shutil.rmtree(root, ignore_errors=True)
 
-    complete = [d for n, d in one.items() if n.startswith("complete")]
-    seconds = [d["seconds"] for d in complete]
-    learner = [sum(e.get("learner_seconds", 0.0) for e in d["exercises"]) for d in complete]
     overhead = [s - inner for s, inner in zip(seconds, learner, strict=True)]
-    right = [d["score"] == d["max_score"] for d in complete]
-    codes = [e for d in complete for e in d["exercises"] if e["kind"] == "code"]
-    slowest = sorted(codes, key=lambda e: -e["seconds"])[:5]
-
-    print(f"complete submissions fully right: {sum(right)} of {len(right)}")
-    print("one complete submission (--jobs 1, medians):")
+    by_exercise: dict[str, list[float]] = {}
+    for e in codes:
+        by_exercise.setdefault(e["exercise"], []).append(e["seconds"])
+    typical = {ex: statistics.median(s) for ex, s in by_exercise.items()}
+    slowest = sorted(typical, key=lambda ex: -typical[ex])[:5]
+    count = len(right) // len(runs)
+    print(f"complete submissions fully right: {sum(right) // len(runs)} of {count}")
+    print(f"one complete submission (--jobs 1, medians over {len(runs)} run(s)):")
     print(f"  wall              {statistics.median(seconds):7.2f} s")
     print(f"  in learner code   {statistics.median(learner):7.2f} s")
     print(f"  grader overhead   {statistics.median(overhead):7.2f} s   (goal ≤ 1 s)")
-    print("  slowest code exercises: " + ", ".join(
-        f"{e['exercise']} {e['seconds']:.2f} s" for e in slowest))  # fmt: skip
-    speedup = t1 / t2
-    print("the whole class:")
-    for jobs, t, cpu in ((1, t1, cpu1), (2, t2, cpu2)):
+    print("  slowest code exercises (medians): " + ", ".join(
+        f"{ex} {typical[ex]:.2f} s" for ex in slowest))  # fmt: skip
+    ratios = [t1 / t2 for t1, _, t2, _ in runs]
+    speedup = statistics.median(ratios)
+    t1 = statistics.median(r[0] for r in runs)
+    t2 = statistics.median(r[2] for r in runs)
+    print(f"the whole class (medians of {len(runs)} pair(s), --jobs 1 and --jobs 2 in turn):")
+    for jobs, t, cpu in ((1, t1, statistics.median(r[1] for r in runs)),
+                         (2, t2, statistics.median(r[3] for r in runs))):  # fmt: skip
         print(f"  --jobs {jobs}  {t:7.1f} s  {len(paths) / t:6.2f} submissions/s  "
               f"{cpu:7.1f} CPU-s  {cpu / t:4.2f} cores busy")  # fmt: skip
-    print(f"  speed-up  {speedup:.2f}×   (goal ≥ 1.8×)")
-    print(f"  at most   {2 * t1 / cpu2:.2f}×   on 2 cores for this CPU: --jobs 1 keeps "
-          f"{cpu1 / t1:.2f} cores busy itself; CPU from {meter.kind}")  # fmt: skip
+    print(f"  speed-up  {speedup:.2f}×   (goal ≥ 1.8×; pairs: "
+          f"{', '.join(f'{r:.2f}' for r in ratios)})")  # fmt: skip
+    allowed = statistics.median(2 * r[0] / r[3] for r in runs)
+    busy = statistics.median(r[1] / r[0] for r in runs)
+    print(f"  at most   {allowed:.2f}×   on 2 cores for this CPU: --jobs 1 keeps "
+          f"{busy:.2f} cores busy itself; CPU from {meter.kind}")  # fmt: skip
     per_complete = statistics.median(seconds) / speedup
-    seconds2 = [d["seconds"] for n, d in two.items() if n.startswith("complete")]
-    fixed2 = t2 - sum(d["seconds"] for d in two.values()) / 2
-    paired = (fixed2 + 500 * statistics.median(seconds2) / 2) / 60
-    print(f"500 complete submissions at --jobs 2: {paired:.1f} min as {fixed2:.1f} s once + 500 × "
-          f"{statistics.median(seconds2):.2f} s ÷ 2 (the --jobs 2 run's set-up and idle end, its "
+    once = statistics.median(fixed2)
+    paired = (once + 500 * statistics.median(seconds2) / 2) / 60
+    print(f"500 complete submissions at --jobs 2: {paired:.1f} min as {once:.1f} s once + 500 × "
+          f"{statistics.median(seconds2):.2f} s ÷ 2 (the --jobs 2 runs' set-up and idle end, their "
           "median complete submission)")  # fmt: skip
     print(f"500 complete submissions at --jobs 2, extrapolated: {500 * per_complete / 60:.1f} min "
           f"(goal ≤ 10 min); load average now {os.getloadavg()[0]:.2f}")  # fmt: skip
