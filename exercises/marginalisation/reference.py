@@ -192,7 +192,9 @@ def mistake_prior_size_shared(seen: int, shared: int) -> int:
 def ba_reduced_size(cameras: int, points: int) -> int:
     """Side of the reduced camera system after eliminating every point (6 per camera)."""
     n = cameras + points
-    edges = [(c, cameras + p) for c in range(cameras) for p in range(points)]
+    edges = np.column_stack(  # every point seen by every camera: (c, cameras + p)
+        [np.repeat(np.arange(cameras), points), cameras + np.tile(np.arange(points), cameras)]
+    )
     kept = mg.markov_blanket(n, edges, range(cameras, n))
     return 6 * len(kept)
 

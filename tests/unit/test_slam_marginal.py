@@ -131,6 +131,31 @@ def test_symbolic_fill_matches_a_numeric_schur_complement(
     assert mg.marginal_fill(n, edges, removed[::-1]) == fill
 
 
+@FAST
+@given(st.integers(2, 10), st.integers(0, 2**32 - 1), st.data())
+def test_markov_blanket_is_where_a_numeric_schur_complement_changes(
+    n: int, seed: int, data: st.DataObject
+) -> None:
+    """The blanket against the rows of a real Schur complement that differ from ``H_aa`` (the
+    prior's variables), for random graphs; pairs and an m×2 array give the same."""
+    pairs = list(itertools.combinations(range(n), 2))
+    edges = data.draw(st.lists(st.sampled_from(pairs), max_size=2 * n, unique=True))
+    edges = [(j, i) if data.draw(st.booleans()) else (i, j) for i, j in edges]  # either way
+    removed = data.draw(st.lists(st.integers(0, n - 1), min_size=1, max_size=n - 1, unique=True))
+    rng = np.random.default_rng(seed)
+    h = np.zeros((n, n))
+    for i, j in edges:
+        h[i, j] = h[j, i] = rng.uniform(0.1, 1.0) * rng.choice([-1, 1])
+    h += np.diag(np.abs(h).sum(axis=1) + 1.0)
+    keep = [i for i in range(n) if i not in removed]
+    h_new, _ = mg.schur_complement(h, np.zeros(n), keep)
+    changed = np.abs(h_new - h[np.ix_(keep, keep)]).max(axis=1) > 1e-12
+    expected = [keep[r] for r in np.flatnonzero(changed)]
+    assert mg.markov_blanket(n, edges, removed) == expected
+    array = np.array(edges, dtype=np.int64).reshape(-1, 2)
+    assert mg.markov_blanket(n, array, iter(removed)) == expected
+
+
 def test_markov_blanket_of_one_variable_is_its_neighbours() -> None:
     edges = [(0, 1), (0, 2), (2, 3), (3, 4), (1, 5)]
     assert mg.markov_blanket(6, edges, [0]) == [1, 2]
