@@ -666,9 +666,9 @@ def test_huge_output_is_truncated(make_worker: MakeWorker) -> None:
         import sys
         def f():
             chunk = "x" * (1 << 20)
-            for _ in range(100):
+            for _ in range(5):  # (past eight times the 1 MiB budget, a call is stopped)
                 sys.stdout.write(chunk)
-            sys.stderr.write("e" * (10 << 20))
+            sys.stderr.write("e" * (2 << 20))
             return 7
         """
     )

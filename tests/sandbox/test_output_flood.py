@@ -11,23 +11,25 @@ from __future__ import annotations
 import time
 from collections.abc import Callable
 
+import pytest
+
 from slamcourse.sandbox import Limits, LoadResult, Worker
 
 MakeWorker = Callable[..., tuple[Worker, LoadResult]]  # the make_worker fixture (conftest.py)
 
 
-def test_printing_300_mb_in_calls_is_muted(make_worker: MakeWorker) -> None:
+def test_printing_140_mb_in_calls_is_muted(make_worker: MakeWorker) -> None:
     worker, loaded = make_worker(
         """
         def f(i):
-            for _ in range(15):
+            for _ in range(7):
                 print("x" * 1_000_000)
             return i
         """
     )
     assert loaded.ok and not loaded.output_cut
     start = time.monotonic()
-    results = [worker.call([i]) for i in range(20)]  # 20 calls x 15 MB = 300 MB
+    results = [worker.call([i]) for i in range(20)]  # 20 calls x 7 MB = 140 MB
     elapsed = time.monotonic() - start
     assert [r.value for r in results] == list(range(20))
     assert all(r.output_cut for r in results)
@@ -51,6 +53,36 @@ def test_printing_300_mb_at_import_is_muted(make_worker: MakeWorker) -> None:
     assert loaded.ok and loaded.output_cut
     assert worker.call([]).value == 1
     assert time.monotonic() - start < 5.0
+
+
+@pytest.mark.parametrize("chunk", [100_000, 20])
+def test_a_call_that_prints_forever_is_stopped_within_a_second(
+    make_worker: MakeWorker, chunk: int
+) -> None:
+    """Past eight times the output budget in one call, a muted write raises: the call ends with
+    a reply that says why and stops the batch, long before its time limit; ``except
+    Exception`` in the learner's loop does not catch it; the next call starts afresh."""
+    worker, loaded = make_worker(
+        f"""
+        def f(n):
+            if n:
+                return n
+            while True:
+                try:
+                    print("x" * {chunk - 1})
+                except Exception:
+                    pass
+        """
+    )
+    assert loaded.ok
+    start = time.monotonic()
+    results = worker.call_many([[0]] + [[1]] * 5)
+    assert time.monotonic() - start < 2.5
+    assert len(results) == 1 and results[0].status == "raised" and results[0].flooded
+    assert results[0].error.startswith("OutputFlood: your function printed more than 8 MiB")
+    assert "a loop that does not end" in results[0].error
+    assert results[0].frames[-1].text.startswith("print(")
+    assert worker.call([2]).value == 2  # (its own call mark: nothing printed, nothing stopped)
 
 
 def test_writing_around_the_muted_streams_is_stopped(make_worker: MakeWorker) -> None:
@@ -100,6 +132,7 @@ def test_muted_stream_still_behaves_like_a_stream(make_worker: MakeWorker) -> No
 def test_verdicts_say_the_output_was_cut() -> None:
     """Through the grader: a correct, chatty submission passes and is told its output was cut;
     one whose single call floods (3 MB) is stopped at once and told to print less; one that
+    prints forever is stopped inside its first call, with the line that printed; one that
     writes around the muted streams fails with a message that says why."""
     from slamcourse.course.loader import load_course
     from slamcourse.kinds import get_kind
@@ -118,6 +151,15 @@ def test_verdicts_say_the_output_was_cut() -> None:
     assert time.monotonic() - start < 5.0
     assert verdict.status == "failed" and verdict.details["flooded"] == 1
     assert "more than 1 MiB of output in one call (test input 1 of" in verdict.feedback
+    forever = "def range_bearing(dx, dy, theta):\n    while True:\n        print('x' * 99_999)\n"
+    start = time.monotonic()
+    verdict = kind.check_source(spec, forever, "forever.py")  # type: ignore[attr-defined]
+    assert time.monotonic() - start < 3.0  # (its time limit is 5 s a call)
+    assert verdict.status == "failed" and verdict.details["output_cut"] is True
+    assert "raised OutputFlood: your function printed more than 8 MiB in one call" in (
+        verdict.feedback
+    )
+    assert "`forever.py:3`" in verdict.feedback
     around = (
         "import math, os\ndef range_bearing(dx, dy, theta):\n"
         "    os.write(1, b'y' * 3_000_000)\n" + body

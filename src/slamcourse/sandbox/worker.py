@@ -33,8 +33,13 @@ milliseconds, so replies written just before a call that hangs are found without
 Learner output is muted past ``out`` characters per stream (over the worker's whole life):
 ``sys.stdout`` and ``sys.stderr`` become writers that keep the first ``out`` characters and
 count the rest, so a ``print`` in a loop costs almost nothing once the budget is spent. Every
-reply carries ``dropped``, the characters discarded so far. (Output written around these
-writers, e.g. with ``os.write(1, ...)``, reaches the parent, which kills a worker that floods.)
+reply carries ``dropped``, the characters discarded so far. A call that has written more than
+:data:`FLOOD_FACTOR` times ``out`` characters is stopped there: the muted write raises
+:class:`OutputFlood` (a ``BaseException``, which ``except Exception`` does not catch), so a
+``print`` in a loop that never ends gets its verdict in about a second instead of running to
+the call's time limit. (Such a call floods anyway: more than ``out`` in one call fails it.)
+(Output written around these writers, e.g. with ``os.write(1, ...)``, reaches the parent,
+which kills a worker that floods.)
 
 Return values are converted to plain JSON data here, with exact type checks only (``type(x) is
 float``), so no method of a learner object is called while encoding; anything else becomes an
@@ -170,6 +175,20 @@ else:
     _NP_SCALARS = frozenset()
 
 
+FLOOD_FACTOR = 8
+"""A call that writes more than this many times the output budget (``out=``) is stopped."""
+
+
+class OutputFlood(BaseException):
+    """Raised by a muted write once the running call has written more than
+    :data:`FLOOD_FACTOR` times the output budget: it never ends well (the call floods)."""
+
+
+_CALL_MARK = float("inf")
+"""Characters written to stdout and stderr together when the running call began (infinite
+between calls: output at import or between calls is only muted, never stopped)."""
+
+
 class _MutedStream(io.TextIOBase):
     """A text stream that passes the first ``budget`` characters to ``real``, then only
     counts (``dropped``). stdout and stderr each get one; ``print`` works unchanged."""
@@ -194,6 +213,11 @@ class _MutedStream(io.TextIOBase):
             self.dropped += size - _len(part)
         else:
             self.dropped += size
+            if _STDOUT.written + _STDERR.written - _CALL_MARK > FLOOD_FACTOR * _BUDGET:
+                raise OutputFlood(
+                    f"your function printed more than {FLOOD_FACTOR * _BUDGET >> 20} MiB in "
+                    "one call, so it was stopped there (a print in a loop that does not end?)"
+                )
         return size
 
     def flush(self) -> None:
@@ -420,14 +444,18 @@ class Session:
         request sent as JSON has its arguments pickled here, before the call."""
         if check and record is None:
             record = _pickle(args, 5)
+        global _CALL_MARK
+        _CALL_MARK = _STDOUT.written + _STDERR.written
         try:
             result = self.function(*args)
         except (SystemExit, KeyboardInterrupt):
             raise
         except BaseException as exc:
+            _CALL_MARK = float("inf")
             _restore_builtins()
             reply = {"status": "raised", **self.describe(exc)}
         else:
+            _CALL_MARK = float("inf")
             _restore_builtins()
             try:
                 reply = {"status": "ok", "value": encode(result)}
