@@ -406,9 +406,9 @@ def test_each_grading_process_runs_on_its_own_cpu() -> None:
 
 def test_the_long_parts_of_the_submissions_graded_last_go_first(tmp_path: Path) -> None:
     """A batch does not end on one learner's slow optimiser: the submissions graded last (a
-    tenth, at least four per process) are graded in two parts, and the parts with the
-    exercises that may run long go before everything else; every exercise of a split
-    submission is in exactly one of its parts. One process, or nothing that runs long:
+    tenth, at least four per process) are graded in parts, and the parts with the exercises
+    that may run long go before everything else, the rest last in pieces; every exercise of a
+    split submission is in exactly one of its parts. One process, or nothing that runs long:
     whole submissions, largest first."""
     from slamcourse.batch.grade import _largest_first, plan
 
@@ -432,6 +432,19 @@ def test_the_long_parts_of_the_submissions_graded_last_go_first(tmp_path: Path) 
     assert plan(paths, long, 1) == plan(paths, frozenset(), 2) == [(i, None) for i in order]
     big = [tmp_path / f"missing-{k}.zip" for k in range(200)]
     assert sum(part is not None and part.inside for _, part in plan(big, long, 2)) == 20
+    # the rest in pieces: the other code exercises dealt out in turn, the last piece every
+    # exercise not in another part; each piece of all split submissions, then the next
+    others = ["a/short", "b/long", "c/long", "e/code", "f/code", "g/code"]
+    tasks = plan(paths, long, 2, others)
+    assert [i for i, _ in tasks] == last + order[:4] + last * 3
+    pieces = [tasks[k][1] for k in (0, 12, 20, 28)]
+    assert tasks[12:20] == [(i, pieces[1]) for i in last]
+    assert [p.exercises if p and p.inside else None for p in pieces[1:3]] == [
+        frozenset({"a/short", "g/code"}),
+        frozenset({"e/code"}),
+    ]
+    for ex in ("a/short", "b/long", "c/long", "d/text", "e/code", "f/code", "g/code"):
+        assert sum(ex in p for p in pieces if p is not None) == 1, ex
 
 
 def test_a_submission_graded_in_parts_gets_the_grade_it_gets_whole(

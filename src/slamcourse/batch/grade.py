@@ -814,29 +814,30 @@ def _grade_all(
                     shared.answers.update(computed.result())
             shared_path = scratch / "tests.pickle"
             shared.save(shared_path)
-            tasks = plan(paths, _long_exercises(course), jobs)
+            tasks = plan(paths, _long_exercises(course), jobs, code_ids)
             futures = {
                 pool.submit(grade_submission, paths[i], options, str(shared_path), True, part): (
                     i,
-                    part,
+                    # (the part with every other exercise first: an error there is reported)
+                    (part is not None and part.inside, k),
                 )
-                for i, part in tasks
+                for k, (i, part) in enumerate(tasks)
             }
-            parts: dict[int, dict[bool, SubmissionGrade]] = {}
-            expected = Counter(i for i, _ in tasks)  # (two for a split submission)
+            parts: dict[int, dict[tuple[bool, int], SubmissionGrade]] = {}
+            expected = Counter(i for i, _ in tasks)  # (more than one for a split submission)
             done = 0
             for future in as_completed(futures):
-                i, part = futures[future]
+                i, key = futures[future]
                 try:
                     graded = future.result()
                 except Exception as exc:  # the worker process itself died
                     graded = SubmissionGrade(
                         paths[i].name, None, "error", error=f"the grading process failed: {exc}"
                     )
-                parts.setdefault(i, {})[part is not None and part.inside] = graded
+                parts.setdefault(i, {})[key] = graded
                 if len(parts[i]) < expected[i]:
                     continue
-                got = parts.pop(i)  # (the other exercises first: an error there is reported)
+                got = parts.pop(i)
                 results[i] = merged([got[k] for k in sorted(got)], course.exercise_ids)
                 done += 1
                 if on_done:
@@ -848,29 +849,46 @@ def _grade_all(
 
 SPLIT_SHARE = 0.1
 SPLIT_ROUNDS = 4
+REST_PIECES = 3
 
 
-def plan(paths: Sequence[Path], long: frozenset[str], jobs: int) -> list[tuple[int, Part | None]]:
+def plan(
+    paths: Sequence[Path], long: frozenset[str], jobs: int, others: Sequence[str] = ()
+) -> list[tuple[int, Part | None]]:
     """The tasks of a batch graded by ``jobs`` processes, in the order the processes take
     them: submissions largest first (:func:`_largest_first`), except that the submissions
     graded last (a tenth of the batch, and at least ``SPLIT_ROUNDS`` per process) are graded
-    in two parts, and the parts with the ``long`` exercises (those that may run long:
-    :meth:`~slamcourse.kinds.code.CodeOptions.may_run_long`) of all of them go first.
+    in parts, and the parts with the ``long`` exercises (those that may run long:
+    :meth:`~slamcourse.kinds.code.CodeOptions.may_run_long`) of all of them go first. The rest
+    of each goes last, in up to ``REST_PIECES`` pieces: the course's ``others`` (its other code
+    exercises, in its order) dealt out in turn to all but the last piece, which takes every
+    exercise not in another part (the text answers too).
 
     How long a learner's code takes is unknown until it runs, and most of all on a whole data
     set: one learner's dense solve of INTEL took 10 s where the sparse ones took 0.1 s. Graded
     last, such a submission kept one process busy for 8 s after the other had finished (a
     tenth of a 50-submission class's time at ``--jobs 2``); graded first, the others' work
-    fills that time. A part costs ~15 ms (the submission read again, an engine opened), so
-    only the end of the batch is split."""
+    fills that time. So can a learner whose code loops in every exercise: each of its calls
+    runs to its time limit (5 s), four minutes in all, which pieces let both processes share.
+    A part costs ~15 ms (the submission read again, an engine opened), so only the end of
+    the batch is split."""
     order = _largest_first(paths)
     tasks: list[tuple[int, Part | None]] = [(i, None) for i in order]
     if not long or jobs < 2:
         return tasks
     count = min(len(order), max(SPLIT_ROUNDS * jobs, math.ceil(len(order) * SPLIT_SHARE)))
     split = order[len(order) - count :]
-    first, rest = Part(long, inside=True), Part(long, inside=False)
-    return [(i, first) for i in split] + tasks[: len(order) - count] + [(i, rest) for i in split]
+    rest = [ex for ex in others if ex not in long]
+    groups = [frozenset(rest[k :: REST_PIECES]) for k in range(REST_PIECES - 1)]
+    groups = [g for g in groups if g]
+    pieces = [Part(g, inside=True) for g in groups]
+    pieces.append(Part(long.union(*groups), inside=False))
+    first = Part(long, inside=True)
+    return (
+        [(i, first) for i in split]
+        + tasks[: len(order) - count]
+        + [(i, piece) for piece in pieces for i in split]
+    )
 
 
 def merged(parts: Sequence[SubmissionGrade], order: Sequence[str]) -> SubmissionGrade:
