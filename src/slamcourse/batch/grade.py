@@ -879,7 +879,7 @@ def plan(
     count = min(len(order), max(SPLIT_ROUNDS * jobs, math.ceil(len(order) * SPLIT_SHARE)))
     split = order[len(order) - count :]
     rest = [ex for ex in others if ex not in long]
-    groups = [frozenset(rest[k :: REST_PIECES]) for k in range(REST_PIECES - 1)]
+    groups = [frozenset(rest[k::REST_PIECES]) for k in range(REST_PIECES - 1)]
     groups = [g for g in groups if g]
     pieces = [Part(g, inside=True) for g in groups]
     pieces.append(Part(long.union(*groups), inside=False))
