@@ -29,7 +29,7 @@ from slamcourse.course.model import ExerciseSpec, Variant
 from slamcourse.errors import UsageError
 from slamcourse.kinds import get_kind
 from slamcourse.progress import ExerciseState, Progress
-from slamcourse.settings import Settings, activate_cache
+from slamcourse.settings import Settings, activate_cache, cache_dir
 from slamcourse.verdict import Verdict
 
 if TYPE_CHECKING:
@@ -313,6 +313,7 @@ class Engine:
         self._pool_lock = threading.Lock()
         self._nav_lock = threading.Lock()  # skipped: read, change, write
         self._summary = _SummaryCache()
+        self._cache_before: Path | None = None  # the cache in use before this engine opened
 
     @classmethod
     def open(
@@ -336,6 +337,7 @@ class Engine:
         per process; its exercises are parsed once, not once per submission).
         """
         settings = settings or Settings.from_env()
+        before = cache_dir()
         activate_cache(settings.cache)
         engine_pool = None
         if warm_sandbox:
@@ -348,12 +350,14 @@ class Engine:
                 course = load_course(course_root(settings.course))
             progress = Progress.open(settings.home / "progress.sqlite3") if with_progress else None
         except BaseException:
+            activate_cache(before)
             if engine_pool is not None:
                 engine_pool.close()
             raise
         engine = cls(course, settings, progress)
         engine._pool = engine_pool
         engine._fork_workers = fork_workers
+        engine._cache_before = before
         return engine
 
     @staticmethod
@@ -385,6 +389,8 @@ class Engine:
             self._pool.warm()
 
     def close(self) -> None:
+        if cache_dir() == self.settings.cache:  # (a batch deletes a submission's home after
+            activate_cache(self._cache_before)  # its engine: nothing may be cached there)
         if self.progress is not None:
             self.progress.close()
         with self._pool_lock:

@@ -505,3 +505,24 @@ def test_a_submission_grades_text_then_code_without_scipy_then_code_with_it(
     uses = read(make_submission(tmp_path / "uses", 42, {}, "import scipy\n" + SOLUTION))
     assert [_grading_order(a, _source(plain, a)) for a in plain.manifest.answers] == [0, 1]
     assert [_grading_order(a, _source(uses, a)) for a in uses.manifest.answers] == [2]
+
+
+def test_a_graded_submission_leaves_nothing_cached_in_its_deleted_home(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Each submission is graded in a temporary home, deleted after its engine closes; the
+    process's cache then goes back to what it was, so nothing parsed later (another engine's
+    exercise, a figure) is written into the deleted home, which would bring it back."""
+    import tempfile
+
+    from slamcourse.settings import cache_dir
+
+    before = cache_dir()
+    homes = tmp_path / "homes"
+    homes.mkdir()
+    monkeypatch.setattr(tempfile, "tempdir", str(homes))
+    sub = make_submission(tmp_path / "s", 41, {"basics/distance": "1"}, SOLUTION)
+    [graded] = grade_all([sub], GradeOptions(course=FIXTURE_COURSE), jobs=1)
+    assert graded.status == "graded"
+    assert cache_dir() == before
+    assert list(homes.iterdir()) == []
