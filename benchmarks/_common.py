@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import atexit
 import os
+import shutil
 import statistics
 import subprocess
 import sys
@@ -97,7 +99,9 @@ def environment() -> dict[str, str]:
     """A private progress folder, no colour, and bytecode caching on (as installed packages
     have it: a PYTHONDONTWRITEBYTECODE left in the environment would recompile every module on
     every start and measure the compiler, not slamcourse)."""
-    env = dict(os.environ, NO_COLOR="1", SLAMCOURSE_HOME=tempfile.mkdtemp(prefix="slambench-"))
+    home = tempfile.mkdtemp(prefix="slambench-")
+    atexit.register(shutil.rmtree, home, True)  # (the runs' learner home, gone with the script)
+    env = dict(os.environ, NO_COLOR="1", SLAMCOURSE_HOME=home)
     env.pop("PYTHONDONTWRITEBYTECODE", None)
     return env
 

@@ -40,6 +40,7 @@ SOURCE=$ROOT/source
 SUBMISSION=$ROOT/submission
 RESULTS=$ROOT/results
 OUT=$(mktemp -d)
+trap 'rm -rf "$OUT"' EXIT
 mkdir -p "$RESULTS"
 # a learner may upload the submission folder's files or the submission zip itself
 if [ ! -f "$SUBMISSION/submission.json" ]; then
