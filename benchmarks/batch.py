@@ -98,6 +98,8 @@ def main() -> None:
         "--pairs", type=int, default=3, help="--jobs 1 and --jobs 2 runs, in turn (median ratio)"
     )
     args = parser.parse_args()
+    if args.pairs < 1:
+        parser.error("--pairs must be at least 1")
     env = environment()
     n_partial = round(args.count * args.partial)
     n_hostile = round(args.count * args.hostile)

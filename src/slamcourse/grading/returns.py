@@ -349,8 +349,6 @@ def _close_arrays(
     booleans) of ``want``'s shape within the tolerance. False means "look closely" (the walk
     below finds the entry and says what is wrong), not necessarily a mismatch.
     ``want_array``: ``numeric_array(want)`` if the caller has it; ``got_array`` likewise."""
-    import numpy as np
-
     if not isinstance(got, list) or not isinstance(want, list):
         return False
     if len(got) == len(want) <= _SMALL and {int, float}.issuperset(map(type, got)):
@@ -368,9 +366,7 @@ def _close_arrays(
     w = numeric_array(want) if want_array is None else want_array
     if g is None or w is None or g.shape != w.shape:  # look closely
         return False
-    if not np.isfinite(g).all() or not np.isfinite(w).all():
-        return False
-    return bool((np.abs(g - w) <= tol.atol + tol.rtol * np.abs(w)).all())
+    return bool(_within(g, w, "number", tol).all())
 
 
 def _array(

@@ -447,15 +447,16 @@ class Session:
         global _CALL_MARK
         _CALL_MARK = _STDOUT.written + _STDERR.written
         try:
-            result = self.function(*args)
+            try:
+                result = self.function(*args)
+            finally:
+                _CALL_MARK = float("inf")
         except (SystemExit, KeyboardInterrupt):
             raise
         except BaseException as exc:
-            _CALL_MARK = float("inf")
             _restore_builtins()
             reply = {"status": "raised", **self.describe(exc)}
         else:
-            _CALL_MARK = float("inf")
             _restore_builtins()
             try:
                 reply = {"status": "ok", "value": encode(result)}

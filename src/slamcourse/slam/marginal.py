@@ -18,7 +18,6 @@ Indices are 0-based scalar indices into ``H`` unless a function says "variables"
 from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
-from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -109,9 +108,7 @@ def marginal_fill(n: int, edges: Iterable[Sequence[int]], removed: Iterable[int]
     return sorted(after - before)
 
 
-def markov_blanket(
-    n: int, edges: Iterable[Sequence[int]] | Any, removed: Iterable[int]
-) -> list[int]:
+def markov_blanket(n: int, edges: ArrayLike, removed: Iterable[int]) -> list[int]:
     """The kept variables linked to any of ``removed`` (directly or through other removed
     ones): the variables the prior left by marginalising ``removed`` is on. Every removed
     variable goes, so these are the kept variables with an edge to one of them (a chain
@@ -119,9 +116,6 @@ def markov_blanket(
     an m×2 integer array (a bundle adjustment's hundreds of thousands of edges)."""
     gone = np.zeros(n, dtype=bool)
     gone[[int(v) for v in removed]] = True
-    pairs = np.asarray(edges if isinstance(edges, np.ndarray) else list(edges))
-    if pairs.size == 0:
-        return []
-    i, j = pairs[:, 0].astype(np.int64), pairs[:, 1].astype(np.int64)
+    i, j = np.asarray(edges, dtype=np.int64).reshape(-1, 2).T
     linked = np.concatenate([j[gone[i] & ~gone[j]], i[gone[j] & ~gone[i]]])
     return [int(v) for v in np.unique(linked)]
