@@ -472,6 +472,64 @@ def test_a_submission_graded_in_parts_gets_the_grade_it_gets_whole(
     ]
 
 
+def test_a_slow_learners_last_pieces_are_cut_finer_and_go_first() -> None:
+    """When the part with the long exercises of a split submission is slow (its code runs to
+    its time limits), its pieces still waiting become one per code exercise, and one for
+    everything else, taken before any other task; without pieces waiting, nothing changes."""
+    from collections import deque
+
+    from slamcourse.batch.grade import Part, _pieces, _refine
+
+    long = frozenset({"b/long"})
+    others = ["a/code", "b/long", "c/code", "d/code", "e/code"]
+    pieces = _pieces(long, others, 3)
+    assert [p.exercises for p in pieces[:2]] == [
+        frozenset({"a/code", "e/code"}),
+        frozenset({"c/code"}),
+    ]
+    tasks = [(7, (0, None)), (8, (1, pieces[0])), (9, (2, pieces[0]))]
+    tasks += [(10, (1, pieces[1])), (11, (1, pieces[2]))]
+    queue = deque(tasks)
+    assert _refine(queue, 0, long, others, 100) == 0 and list(queue) == tasks
+    assert _refine(queue, 1, long, others, 100) == 5 - 3
+    front = list(queue)[:5]
+    assert [k for k, _ in front] == [100, 101, 102, 103, 104]
+    assert all(i == 1 for _, (i, _) in front)
+    assert [p.exercises for _, (_, p) in front[:4] if p is not None] == [
+        frozenset({ex}) for ex in ("a/code", "c/code", "d/code", "e/code")
+    ]
+    rest = front[4][1][1]
+    assert rest == Part(frozenset(others), inside=False)
+    assert list(queue)[5:] == [tasks[0], tasks[2]]  # (the others, in their order)
+    for ex in [*others, "f/text"]:  # every exercise but the long ones in exactly one piece
+        assert sum(ex in p for _, (_, p) in front if p is not None) == (ex not in long)
+
+
+def test_a_submission_cut_finer_gets_the_grade_it_gets_whole(
+    graded: Any, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The same class, every split submission's first part taken for slow as soon as it is
+    out: their waiting pieces are cut finer, and every grade is the one it gets whole."""
+    from slamcourse.batch import grade
+
+    paths, whole = graded
+    cut: list[int] = []
+    refine = grade._refine
+
+    def spy(*args: Any) -> int:
+        cut.append(refine(*args))
+        return cut[-1]
+
+    monkeypatch.setattr(grade, "_long_exercises", lambda course: frozenset({CODE_ID}))
+    monkeypatch.setattr(grade, "SLOW_PART_SECONDS", 0.0)
+    monkeypatch.setattr(grade, "_refine", spy)
+    split = grade_all(paths, GradeOptions(course=FIXTURE_COURSE), jobs=2, pin=False)
+    assert any(n > 0 for n in cut)  # (not for a submission in error, graded whole)
+    assert [without_timing(g.to_dict()) for g in split] == [
+        without_timing(g.to_dict()) for g in whole
+    ]
+
+
 def test_merging_parts_keeps_the_courses_order_and_any_parts_error() -> None:
     from slamcourse.batch.grade import ExerciseGrade, merged
 

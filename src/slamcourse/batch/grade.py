@@ -29,9 +29,9 @@ import shutil
 import tempfile
 import time
 import zipfile
-from collections import Counter
+from collections import Counter, deque
 from collections.abc import Callable, Iterator, Sequence
-from concurrent.futures import ProcessPoolExecutor, as_completed
+from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, as_completed, wait
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -814,34 +814,58 @@ def _grade_all(
                     shared.answers.update(computed.result())
             shared_path = scratch / "tests.pickle"
             shared.save(shared_path)
-            tasks = plan(paths, _long_exercises(course), jobs, code_ids)
-            futures = {
-                pool.submit(grade_submission, paths[i], options, str(shared_path), True, part): (
-                    i,
-                    # (the part with every other exercise first: an error there is reported)
-                    (part is not None and part.inside, k),
-                )
-                for k, (i, part) in enumerate(tasks)
-            }
+            long = _long_exercises(course)
+            tasks = plan(paths, long, jobs, code_ids)
+            queue = deque(enumerate(tasks))  # (key, (submission, part)) in the order taken
+            first_parts = {i: part for i, part in reversed(tasks) if part is not None}
+            running: dict[Future[SubmissionGrade], tuple[int, Part | None, int]] = {}
+            handed: dict[int, float] = {}  # when each split submission's first part went out
             parts: dict[int, dict[tuple[bool, int], SubmissionGrade]] = {}
             expected = Counter(i for i, _ in tasks)  # (more than one for a split submission)
+            fresh = len(tasks)  # (the next key for a piece cut finer)
             done = 0
-            for future in as_completed(futures):
-                i, key = futures[future]
-                try:
-                    graded = future.result()
-                except Exception as exc:  # the worker process itself died
-                    graded = SubmissionGrade(
-                        paths[i].name, None, "error", error=f"the grading process failed: {exc}"
+            while queue or running:
+                # as many tasks handed out as processes, and one waiting: the order stays
+                # the plan's, and a slow submission's pieces can still go ahead of the rest
+                while queue and len(running) <= jobs:
+                    k, (i, part) = queue.popleft()
+                    future = pool.submit(
+                        grade_submission, paths[i], options, str(shared_path), True, part
                     )
-                parts.setdefault(i, {})[key] = graded
-                if len(parts[i]) < expected[i]:
-                    continue
-                got = parts.pop(i)
-                results[i] = merged([got[k] for k in sorted(got)], course.exercise_ids)
-                done += 1
-                if on_done:
-                    on_done(done, total, results[i])  # type: ignore[arg-type]
+                    running[future] = (i, part, k)
+                    if part is not None and part is first_parts.get(i):
+                        handed[i] = time.monotonic()
+                finished, _ = wait(running, timeout=1.0, return_when=FIRST_COMPLETED)
+                now = time.monotonic()
+                for i, since in list(handed.items()):  # a first part still running, or done
+                    if now - since < SLOW_PART_SECONDS:  # (its end is handled below)
+                        continue
+                    del handed[i]
+                    others_out = any(
+                        t[0] == i and t[1] is not first_parts[i] for t in running.values()
+                    )
+                    if not others_out and i not in parts:
+                        expected[i] += _refine(queue, i, long, code_ids, fresh)
+                        fresh += len(code_ids) + 1
+                for future in finished:
+                    i, part, k = running.pop(future)
+                    if part is not None and part is first_parts.get(i):
+                        handed.pop(i, None)  # (quick: its pieces stay as they are)
+                    try:
+                        graded = future.result()
+                    except Exception as exc:  # the worker process itself died
+                        graded = SubmissionGrade(
+                            paths[i].name, None, "error", error=f"the grading process failed: {exc}"
+                        )
+                    # (the part with every other exercise first: an error there is reported)
+                    parts.setdefault(i, {})[(part is not None and part.inside, k)] = graded
+                    if len(parts[i]) < expected[i]:
+                        continue
+                    got = parts.pop(i)
+                    results[i] = merged([got[key] for key in sorted(got)], course.exercise_ids)
+                    done += 1
+                    if on_done:
+                        on_done(done, total, results[i])  # type: ignore[arg-type]
     finally:
         shutil.rmtree(scratch, ignore_errors=True)
     return [r for r in results if r is not None]
@@ -878,17 +902,59 @@ def plan(
         return tasks
     count = min(len(order), max(SPLIT_ROUNDS * jobs, math.ceil(len(order) * SPLIT_SHARE)))
     split = order[len(order) - count :]
-    rest = [ex for ex in others if ex not in long]
-    groups = [frozenset(rest[k::REST_PIECES]) for k in range(REST_PIECES - 1)]
-    groups = [g for g in groups if g]
-    pieces = [Part(g, inside=True) for g in groups]
-    pieces.append(Part(long.union(*groups), inside=False))
+    pieces = _pieces(long, others, REST_PIECES)
     first = Part(long, inside=True)
     return (
         [(i, first) for i in split]
         + tasks[: len(order) - count]
         + [(i, piece) for piece in pieces for i in split]
     )
+
+
+def _pieces(long: frozenset[str], others: Sequence[str], count: int) -> list[Part]:
+    """The rest of a split submission (all but its ``long`` exercises) in up to ``count``
+    pieces: the ``others`` (code exercises, in the course's order) not in ``long`` dealt out in
+    turn to all but the last piece, which takes every exercise not in another part (with
+    ``count`` above the number of ``others``: one piece per code exercise, then the rest)."""
+    rest = [ex for ex in others if ex not in long]
+    groups = [frozenset(rest[k::count]) for k in range(count - 1)]
+    groups = [g for g in groups if g]
+    return [*(Part(g, inside=True) for g in groups), Part(long.union(*groups), inside=False)]
+
+
+SLOW_PART_SECONDS = 10.0
+"""A split submission whose part with the long exercises has been out this long (a few tenths
+of a second for most learners; a learner's code that runs to its time limits takes 5 s per
+exercise, 90 s for a whole data set) has the rest of it graded in one piece per code exercise,
+ahead of everything else (:func:`_refine`)."""
+
+
+def _refine(
+    queue: deque[tuple[int, tuple[int, Part | None]]],
+    i: int,
+    long: frozenset[str],
+    others: Sequence[str],
+    key: int,
+) -> int:
+    """Split submission ``i``'s part with the long exercises is slow (running
+    ``SLOW_PART_SECONDS`` already: its code runs to its time limits), and none of its other
+    parts has started: replace its pieces waiting in ``queue`` with one piece per remaining
+    code exercise and one for everything else, first in the queue, with keys from ``key`` on;
+    returns how many more parts the submission now has (0: nothing changed).
+
+    The pieces of such a learner otherwise come last, three of them, a minute each (a loop
+    that never ends in every exercise), finished by one process while the others had nothing
+    left to do; cut finer and taken first, they are shared by every process, and the other
+    submissions fill the end. How a submission is split never changes its grade (each part is
+    graded as it is whole)."""
+    waiting = [task for task in queue if task[1][0] == i and task[1][1] is not None]
+    finer = _pieces(long, others, len(others) + 1)
+    if not waiting or len(waiting) >= len(finer):
+        return 0
+    for task in waiting:
+        queue.remove(task)
+    queue.extendleft(reversed([(key + n, (i, piece)) for n, piece in enumerate(finer)]))
+    return len(finer) - len(waiting)
 
 
 def merged(parts: Sequence[SubmissionGrade], order: Sequence[str]) -> SubmissionGrade:

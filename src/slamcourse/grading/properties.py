@@ -87,6 +87,7 @@ class Outcome:
     failure_case: Any = None  # the test set's case of ``failure`` (grading.testset.Case)
     output_cut: bool = False  # some of the callee's output was muted
     flooded: int | None = None  # calls made when the callee's output was cut: grading stopped
+    left_running: int | None = None  # calls made when one left a process running: stopped
     hidden_failed: set[str] = field(default_factory=set)  # hidden runs with a failing input
     call_seconds: float = 0.0  # wall time the callee reported for its calls
 

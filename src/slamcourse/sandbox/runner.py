@@ -143,6 +143,9 @@ class CallResult:
     flooded: bool = False
     """This call alone printed more than ``Limits.muted_after``: :meth:`Worker.call_many`
     stopped after it."""
+    left_running: bool = False
+    """This call left a process it started running (a child of the worker, none exited):
+    :meth:`Worker.call_many` stopped after it."""
     array: Any = field(default=None, compare=False, repr=False)
     """``value`` as a float64 ndarray when it came as one (a float array sent as its bytes),
     else None: compared as it is, not converted back from ``value``'s lists."""
@@ -513,7 +516,9 @@ class Worker:
         (``Limits.call_seconds``) and its own captured output; the result list is shorter than
         ``calls`` when the worker died (the last result says how: timeout, crash, broken
         protocol) or when a call's output was muted (the worker stops the batch there, so a
-        flood is not repeated on every input). ``check`` as for :meth:`call`. ``calls`` may
+        flood is not repeated on every input), or when a call left a process it started running
+        (``left_running``: every later call would share the CPU with it). ``check`` as for
+        :meth:`call`. ``calls`` may
         carry its request body already encoded (an ``encoded`` attribute, from
         :func:`~slamcourse.sandbox.protocol.encode_calls`): a batch encodes its inputs once;
         and a callback ``enough(index, result)``: when it returns True for a result that is not
@@ -597,8 +602,12 @@ class Worker:
                         )
                     )
                     return results
-                if frame.get("stop") is True:
+                stop = frame.get("stop")
+                if stop is True:
                     results.append(replace(result, flooded=True))
+                    return results
+                if stop == "processes":
+                    results.append(replace(result, left_running=True))
                     return results
                 results.append(result)
                 if enough is not None and index + 1 < count and enough(index, result):

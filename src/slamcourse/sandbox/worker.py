@@ -139,6 +139,9 @@ _ModuleType = types.ModuleType
 _type_name_getter = type.__dict__["__name__"].__get__
 _str = str
 _len = len
+_WAITID = getattr(os, "waitid", None)  # (not on every platform)
+_P_ALL = getattr(os, "P_ALL", 0)
+_WAIT_LOOK = getattr(os, "WEXITED", 0) | os.WNOHANG | getattr(os, "WNOWAIT", 0)
 _isinstance = isinstance
 
 MAX_DEPTH = 32  # nesting of lists/tuples in a return value
@@ -473,8 +476,10 @@ class Session:
         """Answer every call of ``req["calls"]`` with a frame of its own (ids ``req["id"]``,
         ``req["id"] + 1``, ...), each sent as soon as its call returns. A call that alone
         printed more than the output budget (``out=``) floods: its frame carries ``stop`` and
-        the batch ends there, so the flood is not repeated on every input. The calls are
-        argument lists, or (a pickled batch) the pickle of each call's argument list."""
+        the batch ends there, so the flood is not repeated on every input; so does a call that
+        left a process it started running (``stop: "processes"``, :func:`_left_running`). The
+        calls are argument lists, or (a pickled batch) the pickle of each call's argument
+        list."""
         check = req.get("check") is not False
         first = req.get("id")
         for index, call in enumerate(req["calls"]):
@@ -487,9 +492,26 @@ class Session:
             flooded = _STDOUT.written + _STDERR.written - before > _BUDGET
             if flooded:
                 reply["stop"] = True
-            self.send(reply, last=flooded or index + 1 == _len(req["calls"]))
-            if flooded:
+            elif _left_running():
+                reply["stop"] = "processes"
+            stop = "stop" in reply
+            self.send(reply, last=stop or index + 1 == _len(req["calls"]))
+            if stop:
                 return
+
+
+def _left_running() -> bool:
+    """Whether the call left a process it started still running: this worker has a child and
+    none has exited (a child that exited is left as it is, for the learner's own wait). One
+    system call; a child of a child is not seen (the worker's end kills it). Every later call
+    would share the CPU with such processes (a fork bomb: 63 spinning children made each of
+    the learner's exercises take seconds), so the batch stops there."""
+    if _WAITID is None:
+        return False
+    try:
+        return _WAITID(_P_ALL, 0, _WAIT_LOOK) is None
+    except OSError:  # ChildProcessError: no child at all (the common case)
+        return False
 
 
 def _changed(args: list[Any], record: bytes) -> list[int]:
