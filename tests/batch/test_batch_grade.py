@@ -490,8 +490,9 @@ def test_a_slow_learners_last_pieces_are_cut_finer_and_go_first() -> None:
     tasks = [(7, (0, None)), (8, (1, pieces[0])), (9, (2, pieces[0]))]
     tasks += [(10, (1, pieces[1])), (11, (1, pieces[2]))]
     queue = deque(tasks)
-    assert _refine(queue, 0, long, others, 100) == 0 and list(queue) == tasks
-    assert _refine(queue, 1, long, others, 100) == 5 - 3
+    assert _refine(queue, 0, 1, long, others, 100) == 0 and list(queue) == tasks
+    assert _refine(queue, 1, 5, long, others, 100) == 0 and list(queue) == tasks  # (one started)
+    assert _refine(queue, 1, 4, long, others, 100) == 5 - 3
     front = list(queue)[:5]
     assert [k for k, _ in front] == [100, 101, 102, 103, 104]
     assert all(i == 1 for _, (i, _) in front)

@@ -841,12 +841,8 @@ def _grade_all(
                     if now - since < SLOW_PART_SECONDS:  # (its end is handled below)
                         continue
                     del handed[i]
-                    others_out = any(
-                        t[0] == i and t[1] is not first_parts[i] for t in running.values()
-                    )
-                    if not others_out and i not in parts:
-                        expected[i] += _refine(queue, i, long, code_ids, fresh)
-                        fresh += len(code_ids) + 1
+                    expected[i] += _refine(queue, i, expected[i], long, code_ids, fresh)
+                    fresh += len(code_ids) + 1
                 for future in finished:
                     i, part, k = running.pop(future)
                     if part is not None and part is first_parts.get(i):
@@ -932,14 +928,15 @@ ahead of everything else (:func:`_refine`)."""
 def _refine(
     queue: deque[tuple[int, tuple[int, Part | None]]],
     i: int,
+    parts: int,
     long: frozenset[str],
     others: Sequence[str],
     key: int,
 ) -> int:
-    """Split submission ``i``'s part with the long exercises is slow (running
-    ``SLOW_PART_SECONDS`` already: its code runs to its time limits), and none of its other
-    parts has started: replace its pieces waiting in ``queue`` with one piece per remaining
-    code exercise and one for everything else, first in the queue, with keys from ``key`` on;
+    """Split submission ``i`` (in ``parts`` parts) has its part with the long exercises out
+    for ``SLOW_PART_SECONDS`` already (its code runs to its time limits): if all its other
+    parts are still waiting in ``queue``, replace them with one piece per remaining code
+    exercise and one for everything else, first in the queue, with keys from ``key`` on;
     returns how many more parts the submission now has (0: nothing changed).
 
     The pieces of such a learner otherwise come last, three of them, a minute each (a loop
@@ -949,7 +946,7 @@ def _refine(
     graded as it is whole)."""
     waiting = [task for task in queue if task[1][0] == i and task[1][1] is not None]
     finer = _pieces(long, others, len(others) + 1)
-    if not waiting or len(waiting) >= len(finer):
+    if not waiting or len(waiting) != parts - 1 or len(waiting) >= len(finer):
         return 0
     for task in waiting:
         queue.remove(task)

@@ -421,13 +421,14 @@ class CodeKind(Kind):
             )
         if outcome.left_running is not None:
             details["left_running"] = outcome.left_running  # (the checks stopped there)
-        if failure is None and outcome.left_running is not None:
-            return Verdict.wrong(
-                f"Your function returned while a process it started was still running (test "
-                f"input {outcome.left_running} of {len(tests.cases)}), so grading stopped there: "
-                "wait for every process it starts before returning (or start none).",
-                **details,
-            )
+            if failure is None:
+                return Verdict.wrong(
+                    f"Your function returned while a process it started was still running "
+                    f"(test input {outcome.left_running} of {len(tests.cases)}), so grading "
+                    "stopped there: wait for every process it starts before returning (or start "
+                    "none).",
+                    **details,
+                )
         if failure is None:
             return Verdict.ok(
                 f"All {visible_total} test inputs passed, edge cases and boundary inputs "
