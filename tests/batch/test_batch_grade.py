@@ -472,60 +472,77 @@ def test_a_submission_graded_in_parts_gets_the_grade_it_gets_whole(
     ]
 
 
-def test_a_slow_learners_last_pieces_are_cut_finer_and_go_first() -> None:
-    """When the part with the long exercises of a split submission is slow (its code runs to
-    its time limits), its pieces still waiting become one per code exercise, and one for
-    everything else, taken before any other task; without pieces waiting, nothing changes."""
-    from collections import deque
+def test_a_task_asked_to_stop_leaves_the_rest_of_its_answers_to_other_tasks(
+    graded: Any,
+) -> None:
+    """Asked to stop, a task finishes its current answer and grades no other: it lists the
+    exercises it graded (and those not handed in), says which it left, and the tasks that
+    grade what it left give, merged, the grade the submission gets whole."""
+    from slamcourse.batch.grade import Part, _grade, merged
 
-    from slamcourse.batch.grade import Part, _pieces, _refine
+    paths, whole = graded
+    options = GradeOptions(course=FIXTURE_COURSE)
+    first, left = _grade(paths[0], options, stop=lambda: True)
+    assert left == {"basics/count", CODE_ID}  # (text first: basics/distance was graded)
+    assert "basics/distance" in by_id(first) and not left & set(by_id(first))
+    assert by_id(first)["basics/offset"].status == "missing"
+    rest, none = _grade(paths[0], options, part=Part(left, inside=True))
+    assert none == frozenset() and set(by_id(rest)) == left
+    together = merged([first, rest], COURSE.exercise_ids)
+    assert without_timing(together.to_dict()) == without_timing(whole[0].to_dict())
+    assert _grade(paths[0], options, stop=lambda: False)[1] == frozenset()
 
-    long = frozenset({"b/long"})
-    others = ["a/code", "b/long", "c/code", "d/code", "e/code"]
-    pieces = _pieces(long, others, 3)
-    assert [p.exercises for p in pieces[:2]] == [
-        frozenset({"a/code", "e/code"}),
-        frozenset({"c/code"}),
+
+def test_a_process_with_nothing_to_do_stops_the_tasks_begun_first() -> None:
+    from slamcourse.batch.grade import STEAL_AFTER, _to_stop
+
+    now = 100.0
+    out = [(0, now - 5), (1, 0.0), (2, now - 9), (3, now - STEAL_AFTER / 2)]
+    assert _to_stop(out, 1, now) == [2]
+    assert _to_stop(out, 2, now) == [2, 0]
+    assert _to_stop(out, 3, now) == [2, 0]  # (not one just begun, nor one not yet begun)
+    assert _to_stop(out, 0, now) == []
+
+
+def test_what_a_stopped_task_left_is_dealt_out_long_exercises_first() -> None:
+    from slamcourse.batch.grade import Part, _shares
+
+    code = ["a/code", "b/long", "c/code", "d/code"]
+    left = frozenset({"a/code", "b/long", "d/code", "t/text"})
+    shares = _shares(left, code, frozenset({"b/long"}), 2)
+    assert shares == [
+        Part(frozenset({"b/long", "d/code", "t/text"}), inside=True),
+        Part(frozenset({"a/code"}), inside=True),
     ]
-    tasks = [(7, (0, None)), (8, (1, pieces[0])), (9, (2, pieces[0]))]
-    tasks += [(10, (1, pieces[1])), (11, (1, pieces[2]))]
-    queue = deque(tasks)
-    assert _refine(queue, 0, 1, long, others, 100) == 0 and list(queue) == tasks
-    assert _refine(queue, 1, 5, long, others, 100) == 0 and list(queue) == tasks  # (one started)
-    assert _refine(queue, 1, 4, long, others, 100) == 5 - 3
-    front = list(queue)[:5]
-    assert [k for k, _ in front] == [100, 101, 102, 103, 104]
-    assert all(i == 1 for _, (i, _) in front)
-    assert [p.exercises for _, (_, p) in front[:4] if p is not None] == [
-        frozenset({ex}) for ex in ("a/code", "c/code", "d/code", "e/code")
+    assert _shares(frozenset({"t/text"}), code, frozenset(), 2) == [
+        Part(frozenset({"t/text"}), inside=True)
     ]
-    rest = front[4][1][1]
-    assert rest == Part(frozenset(others), inside=False)
-    assert list(queue)[5:] == [tasks[0], tasks[2]]  # (the others, in their order)
-    for ex in [*others, "f/text"]:  # every exercise but the long ones in exactly one piece
-        assert sum(ex in p for _, (_, p) in front if p is not None) == (ex not in long)
+    for count in (1, 2, 3, 7):  # every exercise left in exactly one piece, no piece empty
+        pieces = _shares(left, code, frozenset({"b/long"}), count)
+        assert len(pieces) == min(count, 3) and all(p.exercises for p in pieces)
+        assert sorted(ex for p in pieces for ex in p.exercises) == sorted(left)
 
 
-def test_a_submission_cut_finer_gets_the_grade_it_gets_whole(
+def test_a_class_whose_every_task_is_stopped_gets_the_grades_it_gets_whole(
     graded: Any, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    """The same class, every split submission's first part taken for slow as soon as it is
-    out: their waiting pieces are cut finer, and every grade is the one it gets whole."""
+    """More processes than submissions, and every task out asked to stop at once (begun or
+    not): each submission is graded one answer per task, and every grade is still the one it
+    gets whole."""
     from slamcourse.batch import grade
 
     paths, whole = graded
     cut: list[int] = []
-    refine = grade._refine
+    shares = grade._shares
 
-    def spy(*args: Any) -> int:
-        cut.append(refine(*args))
-        return cut[-1]
+    def spy(*args: Any) -> list[Any]:
+        cut.append(len(shares(*args)))
+        return shares(*args)
 
-    monkeypatch.setattr(grade, "_long_exercises", lambda course: frozenset({CODE_ID}))
-    monkeypatch.setattr(grade, "SLOW_PART_SECONDS", 0.0)
-    monkeypatch.setattr(grade, "_refine", spy)
-    split = grade_all(paths, GradeOptions(course=FIXTURE_COURSE), jobs=2, pin=False)
-    assert any(n > 0 for n in cut)  # (not for a submission in error, graded whole)
+    monkeypatch.setattr(grade, "_to_stop", lambda out, idle, now: [slot for slot, _ in out])
+    monkeypatch.setattr(grade, "_shares", spy)
+    split = grade_all(paths, GradeOptions(course=FIXTURE_COURSE), jobs=6, pin=False)
+    assert len(cut) >= 3  # (a, b: three answers each, c: two; d: one; e: none, in error)
     assert [without_timing(g.to_dict()) for g in split] == [
         without_timing(g.to_dict()) for g in whole
     ]
@@ -556,14 +573,19 @@ def test_a_submission_grades_text_then_code_without_scipy_then_code_with_it(
 ) -> None:
     """The order a submission's answers are graded in (results keep the course's): text while
     the zygotes start, then the code whose workers come from the zygote without scipy, then
-    the code that names it: one switch between the two zygotes."""
+    the code that names it: one switch between the two zygotes; within each, the exercises
+    that may run long first."""
     from slamcourse.batch.grade import _grading_order, _source
     from slamcourse.batch.submission import read
 
     plain = read(make_submission(tmp_path / "plain", 41, {"basics/distance": "1"}, SOLUTION))
     uses = read(make_submission(tmp_path / "uses", 42, {}, "import scipy\n" + SOLUTION))
-    assert [_grading_order(a, _source(plain, a)) for a in plain.manifest.answers] == [0, 1]
-    assert [_grading_order(a, _source(uses, a)) for a in uses.manifest.answers] == [2]
+    assert [_grading_order(a, _source(plain, a))[0] for a in plain.manifest.answers] == [0, 1]
+    assert [_grading_order(a, _source(uses, a))[0] for a in uses.manifest.answers] == [2]
+    text, code = plain.manifest.answers
+    long = frozenset({CODE_ID})  # (taken for one that may run long: it goes first of its kind)
+    assert _grading_order(code, SOLUTION, long) == (1, False) < _grading_order(code, SOLUTION)
+    assert _grading_order(text, None, long) == (0, True)
 
 
 def test_a_graded_submission_leaves_nothing_cached_in_its_deleted_home(

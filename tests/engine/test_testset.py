@@ -105,12 +105,12 @@ def test_a_fatal_call_stops_the_pass() -> None:
 def test_a_flood_stops_the_pass() -> None:
     tests = testset.build(SPEC)
     # a call that printed past the per-call cap (``flooded``) ends the pass right after it
-    outcome = grade(tests, callee(right, output_cut=True, flooded=True))
-    assert outcome.passed and outcome.flooded == 1 and outcome.examples == 1
+    outcome = grade(tests, callee(right, output_cut=True, stopped="flooded"))
+    assert outcome.passed and outcome.stopped == ("flooded", 1) and outcome.examples == 1
     assert outcome.output_cut
     # output cut without a flood (the worker's streams were capped) is noted, and grading goes on
     cut = grade(tests, callee(right, output_cut=True))
-    assert cut.passed and cut.flooded is None and cut.examples == len(tests.cases)
+    assert cut.passed and cut.stopped is None and cut.examples == len(tests.cases)
     assert cut.output_cut
 
 

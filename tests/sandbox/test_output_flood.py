@@ -78,7 +78,7 @@ def test_a_call_that_prints_forever_is_stopped_within_a_second(
     start = time.monotonic()
     results = worker.call_many([[0]] + [[1]] * 5)
     assert time.monotonic() - start < 2.5
-    assert len(results) == 1 and results[0].status == "raised" and results[0].flooded
+    assert len(results) == 1 and results[0].status == "raised" and results[0].stopped == "flooded"
     assert results[0].error.startswith("OutputFlood: your function printed more than 8 MiB")
     assert "a loop that does not end" in results[0].error
     assert results[0].frames[-1].text.startswith("print(")

@@ -463,14 +463,18 @@ def _source(sub: Submission, answer: Answer) -> str | None:
         return None
 
 
-def _grading_order(answer: Answer, source: str | None) -> int:
+def _grading_order(
+    answer: Answer, source: str | None, long: frozenset[str] = frozenset()
+) -> tuple[int, bool]:
     """Text answers first (0), then code that does not use scipy (1), then code that does (2):
-    its workers come from another zygote (:func:`~slamcourse.grading.pool.uses_scipy`)."""
+    its workers come from another zygote (:func:`~slamcourse.grading.pool.uses_scipy`); within
+    each, the ``long`` exercises (that may run long) first: a task asked to stop
+    (:func:`_to_stop`) then leaves the short ones, which share out well."""
     from slamcourse.grading.pool import uses_scipy
 
     if answer.file is None:
-        return 0
-    return 2 if source is not None and uses_scipy(source) else 1
+        return 0, answer.exercise not in long
+    return (2 if source is not None and uses_scipy(source) else 1), answer.exercise not in long
 
 
 def _text(data: bytes, name: str) -> str:
@@ -536,10 +540,18 @@ def one_blas_thread() -> Iterator[None]:
         undo()
 
 
-def _grading_process(cpus: Sequence[int] = (), taken: Any = None) -> None:
+_BOARD: tuple[Any, Any] | None = None
+"""In a grading process of ``--jobs N``: (when each task slot's task started, whether it is
+asked to stop), shared with the parent (:func:`_grade_all`)."""
+
+
+def _grading_process(cpus: Sequence[int] = (), taken: Any = None, board: Any = None) -> None:
     """The first thing each grading process of ``--jobs N`` does: one BLAS thread, for good,
     and, given ``cpus`` (:func:`cpus_to_pin`), the next of them for itself alone (``taken``:
-    a shared counter of the CPUs handed out). Its sandboxes and workers inherit the CPU."""
+    a shared counter of the CPUs handed out). Its sandboxes and workers inherit the CPU.
+    ``board``: the tasks' start times and stop flags it shares with the parent."""
+    global _BOARD
+    _BOARD = board
     _limit_blas()
     if cpus and taken is not None:
         with taken.get_lock():
@@ -592,6 +604,20 @@ def grade_submission(
     process could not keep its last learner's:
     :func:`~slamcourse.grading.pool.zygote_needed_ahead`), it is started while this one is
     graded. ``part``: grade only those exercises (the result lists only them)."""
+    return _grade(path, options, shared_path, ahead, part)[0]
+
+
+def _grade(
+    path: Path,
+    options: GradeOptions,
+    shared_path: str | None = None,
+    ahead: bool = False,
+    part: Part | None = None,
+    stop: Callable[[], bool] | None = None,
+) -> tuple[SubmissionGrade, frozenset[str]]:
+    """:func:`grade_submission`, and the exercises it left ungraded: asked to ``stop`` (checked
+    before each answer but the first), it grades no further answer, and its result lists
+    neither those answers nor their exercises (another task grades them: :func:`_grade_all`)."""
     from slamcourse.course.locate import course_root
     from slamcourse.engine import Engine
     from slamcourse.settings import Settings
@@ -642,20 +668,25 @@ def grade_submission(
             # (results keep the course's order)
             known = set(engine.course.exercise_ids)
             sources = {a.exercise: _source(sub, a) for a in given.values() if a.file is not None}
+            long = _long_exercises(engine.course)
             order = sorted(
                 (a for a in given.values() if a.exercise in known),
-                key=lambda a: _grading_order(a, sources.get(a.exercise)),
+                key=lambda a: _grading_order(a, sources.get(a.exercise), long),
             )
             engine.expect_code(
                 [(a.exercise, sources[a.exercise] or "") for a in order if a.file is not None]
             )
-            for answer in order:
+            left: frozenset[str] = frozenset()
+            for n, answer in enumerate(order):
+                if n and stop is not None and stop():
+                    left = frozenset(a.exercise for a in order[n:])
+                    break
                 graded[answer.exercise] = _grade_answer(
                     engine, sub, answer, options, shared, sources.get(answer.exercise)
                 )
             grades: list[ExerciseGrade] = []
             for ex in engine.course.exercise_ids:
-                if part is not None and ex not in part:
+                if (part is not None and ex not in part) or ex in left:
                     continue
                 if ex in graded:
                     grades.append(graded[ex])
@@ -682,11 +713,11 @@ def grade_submission(
             tuple(warnings),
             time.perf_counter() - start,
             fingerprint=learner_id(sub.manifest.learner_seed),
-        )
+        ), left
     except SlamcourseError as exc:
         return SubmissionGrade(
             name, learner, "error", error=str(exc), seconds=time.perf_counter() - start
-        )
+        ), frozenset()
     except Exception as exc:  # a grader bug must not stop the batch: said as such
         return SubmissionGrade(
             name,
@@ -694,9 +725,24 @@ def grade_submission(
             "error",
             error=f"internal grader error ({type(exc).__name__}: {exc}); please report it",
             seconds=time.perf_counter() - start,
-        )
+        ), frozenset()
     finally:
         shutil.rmtree(home, ignore_errors=True)
+
+
+_Graded = tuple["SubmissionGrade", frozenset[str]]
+
+
+def _grade_task(
+    path: Path, options: GradeOptions, shared_path: str, part: Part | None, slot: int
+) -> _Graded:
+    """One task of a batch, in a grading process (:func:`_grade_all`): its start time written
+    to its ``slot`` of the board, whose stop flag it heeds between answers."""
+    if _BOARD is None:
+        return _grade(path, options, shared_path, True, part)
+    started, stop = _BOARD
+    started[slot] = time.monotonic()
+    return _grade(path, options, shared_path, True, part, lambda: bool(stop[slot]))
 
 
 # ------------------------------------------------------------------------------ a batch
@@ -782,11 +828,16 @@ def _grade_all(
     scratch = Path(tempfile.mkdtemp(prefix="slamcourse-batch-"))
     try:
         cpus = cpus_to_pin(jobs) if pin else []
+        # each task out has a slot (as many as tasks out: processes and one waiting): when it
+        # started (0: not yet) and whether it is asked to stop after its current answer
+        started = context.Array("d", jobs + 1, lock=False)
+        stop = context.Array("b", jobs + 1, lock=False)
+        free = list(range(jobs, -1, -1))
         with ProcessPoolExecutor(
             max_workers=jobs,
             mp_context=context,
             initializer=_grading_process,
-            initargs=(cpus, context.Value("i", 0)),
+            initargs=(cpus, context.Value("i", 0), (started, stop)),
         ) as pool:
             shared = SharedTests(options.secret, options.hidden_runs)
             answers = [  # first: one of them may be the longest task (a whole data set)
@@ -817,42 +868,49 @@ def _grade_all(
             long = _long_exercises(course)
             tasks = plan(paths, long, jobs, code_ids)
             queue = deque(enumerate(tasks))  # (key, (submission, part)) in the order taken
-            first_parts = {i: part for i, part in reversed(tasks) if part is not None}
-            running: dict[Future[SubmissionGrade], tuple[int, Part | None, int]] = {}
-            handed: dict[int, float] = {}  # when each split submission's first part went out
+            running: dict[Future[_Graded], tuple[int, Part | None, int, int]] = {}
             parts: dict[int, dict[tuple[bool, int], SubmissionGrade]] = {}
-            expected = Counter(i for i, _ in tasks)  # (more than one for a split submission)
-            fresh = len(tasks)  # (the next key for a piece cut finer)
+            expected = Counter(i for i, _ in tasks)  # (a submission's parts: tasks, pieces)
+            fresh = len(tasks)  # (the next key for a piece of what a stopped task left)
             done = 0
             while queue or running:
                 # as many tasks handed out as processes, and one waiting: the order stays
-                # the plan's, and a slow submission's pieces can still go ahead of the rest
+                # the plan's, and what a task asked to stop leaves can still go ahead of it
                 while queue and len(running) <= jobs:
                     k, (i, part) = queue.popleft()
+                    slot = free.pop()
+                    started[slot], stop[slot] = 0.0, 0
                     future = pool.submit(
-                        grade_submission, paths[i], options, str(shared_path), True, part
+                        _grade_task, paths[i], options, str(shared_path), part, slot
                     )
-                    running[future] = (i, part, k)
-                    if part is not None and part is first_parts.get(i):
-                        handed[i] = time.monotonic()
+                    running[future] = (i, part, k, slot)
+                slots = [slot for _, _, _, slot in running.values()]
+                idle = jobs - len(running) - sum(stop[slot] for slot in slots)
+                if not queue and idle > 0:  # a process with nothing to do: share a task's rest
+                    out = [(slot, started[slot]) for slot in slots if not stop[slot]]
+                    for slot in _to_stop(out, idle, time.monotonic()):
+                        stop[slot] = 1
                 finished, _ = wait(running, timeout=1.0, return_when=FIRST_COMPLETED)
-                now = time.monotonic()
-                for i, since in list(handed.items()):  # a first part still running, or done
-                    if now - since < SLOW_PART_SECONDS:  # (its end is handled below)
-                        continue
-                    del handed[i]
-                    expected[i] += _refine(queue, i, expected[i], long, code_ids, fresh)
-                    fresh += len(code_ids) + 1
                 for future in finished:
-                    i, part, k = running.pop(future)
-                    if part is not None and part is first_parts.get(i):
-                        handed.pop(i, None)  # (quick: its pieces stay as they are)
+                    i, part, k, slot = running.pop(future)
+                    free.append(slot)
                     try:
-                        graded = future.result()
+                        graded, left = future.result()
                     except Exception as exc:  # the worker process itself died
-                        graded = SubmissionGrade(
-                            paths[i].name, None, "error", error=f"the grading process failed: {exc}"
+                        graded, left = (
+                            SubmissionGrade(
+                                paths[i].name,
+                                None,
+                                "error",
+                                error=f"the grading process failed: {exc}",
+                            ),
+                            frozenset(),
                         )
+                    if left:  # asked to stop: what it left, shared by every process, first
+                        cut = _shares(left, code_ids, long, jobs)
+                        queue.extendleft(reversed([(fresh + n, (i, p)) for n, p in enumerate(cut)]))
+                        expected[i] += len(cut)
+                        fresh += len(cut)
                     # (the part with every other exercise first: an error there is reported)
                     parts.setdefault(i, {})[(part is not None and part.inside, k)] = graded
                     if len(parts[i]) < expected[i]:
@@ -918,40 +976,31 @@ def _pieces(long: frozenset[str], others: Sequence[str], count: int) -> list[Par
     return [*(Part(g, inside=True) for g in groups), Part(long.union(*groups), inside=False)]
 
 
-SLOW_PART_SECONDS = 10.0
-"""A split submission whose part with the long exercises has been out this long (a few tenths
-of a second for most learners; a learner's code that runs to its time limits takes 5 s per
-exercise, 90 s for a whole data set) has the rest of it graded in one piece per code exercise,
-ahead of everything else (:func:`_refine`)."""
+STEAL_AFTER = 1.0
+"""A task out this long (seconds) is asked to stop after its current answer when a process
+has nothing left to do (:func:`_to_stop`); what it leaves is shared (:func:`_shares`)."""
 
 
-def _refine(
-    queue: deque[tuple[int, tuple[int, Part | None]]],
-    i: int,
-    parts: int,
-    long: frozenset[str],
-    others: Sequence[str],
-    key: int,
-) -> int:
-    """Split submission ``i`` (in ``parts`` parts) has its part with the long exercises out
-    for ``SLOW_PART_SECONDS`` already (its code runs to its time limits): if all its other
-    parts are still waiting in ``queue``, replace them with one piece per remaining code
-    exercise and one for everything else, first in the queue, with keys from ``key`` on;
-    returns how many more parts the submission now has (0: nothing changed).
+def _to_stop(out: Sequence[tuple[int, float]], idle: int, now: float) -> list[int]:
+    """Which of the tasks ``out`` (their slots, and when each started: 0, not yet) to ask to
+    stop after their current answer, with ``idle`` processes that have nothing to do: the
+    ``idle`` that started first, each at least ``STEAL_AFTER`` seconds ago (one started later
+    is taken for nearly done: splitting what it leaves would cost more than it saves)."""
+    begun = sorted((t, slot) for slot, t in out if 0 < t <= now - STEAL_AFTER)
+    return [slot for _, slot in begun[:idle]]
 
-    The pieces of such a learner otherwise come last, three of them, a minute each (a loop
-    that never ends in every exercise), finished by one process while the others had nothing
-    left to do; cut finer and taken first, they are shared by every process, and the other
-    submissions fill the end. How a submission is split never changes its grade (each part is
-    graded as it is whole)."""
-    waiting = [task for task in queue if task[1][0] == i and task[1][1] is not None]
-    finer = _pieces(long, others, len(others) + 1)
-    if not waiting or len(waiting) != parts - 1 or len(waiting) >= len(finer):
-        return 0
-    for task in waiting:
-        queue.remove(task)
-    queue.extendleft(reversed([(key + n, (i, piece)) for n, piece in enumerate(finer)]))
-    return len(finer) - len(waiting)
+
+def _shares(
+    left: frozenset[str], code: Sequence[str], long: frozenset[str], count: int
+) -> list[Part]:
+    """What a task asked to stop left, in up to ``count`` pieces (one per process): its code
+    exercises (``code``, in the course's order, the ``long`` ones first) dealt out in turn, and
+    anything else with the first. A piece that takes long is cut again when a process has
+    nothing to do, so that the batch ends on one exercise at most, never a submission."""
+    ordered = sorted((ex for ex in code if ex in left), key=lambda ex: ex not in long)
+    groups = [set(ordered[n::count]) for n in range(count)]
+    groups[0] |= left.difference(ordered)
+    return [Part(frozenset(g), inside=True) for g in groups if g]
 
 
 def merged(parts: Sequence[SubmissionGrade], order: Sequence[str]) -> SubmissionGrade:

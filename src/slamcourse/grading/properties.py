@@ -20,6 +20,7 @@ from slamcourse.course.model import Tolerance
 from slamcourse.errors import GraderError
 from slamcourse.grading.returns import compare, to_plain
 from slamcourse.sandbox import CallResult, LearnerFrame
+from slamcourse.sandbox.runner import StopReason
 
 MAX_RECORDED = 20  # failing inputs kept for recognising misconceptions
 _HYPOTHESIS = threading.RLock()
@@ -86,8 +87,9 @@ class Outcome:
     the failures): a misconception must be right there too to be named."""
     failure_case: Any = None  # the test set's case of ``failure`` (grading.testset.Case)
     output_cut: bool = False  # some of the callee's output was muted
-    flooded: int | None = None  # calls made when the callee's output was cut: grading stopped
-    left_running: int | None = None  # calls made when one left a process running: stopped
+    stopped: tuple[StopReason, int] | None = None
+    """Why the callee's calls stopped (its output was cut, or a call left a process running:
+    ``CallResult.stopped``), and how many had been made then."""
     hidden_failed: set[str] = field(default_factory=set)  # hidden runs with a failing input
     call_seconds: float = 0.0  # wall time the callee reported for its calls
 

@@ -358,8 +358,8 @@ def run_cases(
     up to :data:`~slamcourse.grading.properties.MAX_RECORDED` of them; ``agreed``: fixed cases
     the learner got right) and, parallel to ``outcome.failures``, the case of each failure.
     Stops at the first fatal result (timeout, crash, broken channel), after output was cut
-    (the function flooded its output: ``outcome.flooded``), after a call that left a process it
-    started running (``outcome.left_running``), and after ``max_failures`` failures
+    (the function flooded its output), after a call that left a process it started running
+    (both: ``outcome.stopped``), and after ``max_failures`` failures
     (the validator needs only the first: whether a file passes); with ``stop_worker``, a
     worker is stopped mid-chunk once the last failure wanted arrives.
     An argument the function changed in place (unless its name is in ``mutable``) is a
@@ -446,12 +446,8 @@ def run_cases(
             if result.status in FATAL:
                 stop = True
                 break
-            if result.flooded:
-                outcome.flooded = outcome.examples
-                stop = True
-                break
-            if result.left_running:
-                outcome.left_running = outcome.examples
+            if result.stopped is not None:
+                outcome.stopped = (result.stopped, outcome.examples)
                 stop = True
                 break
         if stop or len(results) < len(chunk):

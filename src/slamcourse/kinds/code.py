@@ -36,6 +36,13 @@ LIMIT_MAXIMA: dict[str, float] = {
     "memory_bytes": 4 << 30,
 }
 _WHOLE_LIMITS = ("cpu_seconds", "memory_bytes")
+STOPPED = {  # why the worker stopped a learner's calls (CallResult.stopped), as the verdict says it
+    "flooded": "Your function printed more than 1 MiB of output in one call (test input {at} of "
+    "{n}), so grading stopped there: remove or shorten the print statements and check again.",
+    "processes": "Your function returned while a process it started was still running (test "
+    "input {at} of {n}), so grading stopped there: wait for every process it starts before "
+    "returning (or start none).",
+}
 
 
 @dataclass(frozen=True)
@@ -411,24 +418,11 @@ class CodeKind(Kind):
         if outcome.output_cut:
             details["output_cut"] = True
             note = "\n\nYour code printed a lot: output beyond the first 1 MiB per stream was cut."
-        if failure is None and outcome.flooded is not None:
-            details["flooded"] = outcome.flooded
-            return Verdict.wrong(
-                f"Your function printed more than 1 MiB of output in one call (test input "
-                f"{outcome.flooded} of {len(tests.cases)}), so grading stopped there: remove or "
-                "shorten the print statements and check again.",
-                **details,
-            )
-        if outcome.left_running is not None:
-            details["left_running"] = outcome.left_running  # (the checks stopped there)
+        if outcome.stopped is not None:  # (the checks stopped there: said, unless one failed)
+            reason, at = outcome.stopped
+            details["flooded" if reason == "flooded" else "left_running"] = at
             if failure is None:
-                return Verdict.wrong(
-                    f"Your function returned while a process it started was still running "
-                    f"(test input {outcome.left_running} of {len(tests.cases)}), so grading "
-                    "stopped there: wait for every process it starts before returning (or start "
-                    "none).",
-                    **details,
-                )
+                return Verdict.wrong(STOPPED[reason].format(at=at, n=len(tests.cases)), **details)
         if failure is None:
             return Verdict.ok(
                 f"All {visible_total} test inputs passed, edge cases and boundary inputs "

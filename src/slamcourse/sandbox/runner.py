@@ -76,6 +76,8 @@ LoadStatus = Literal[
 ]
 CallStatus = Literal["ok", "raised", "timeout", "crashed", "protocol_error"]
 Fatal = Literal["timeout", "crashed", "protocol_error"]
+StopReason = Literal["flooded", "processes"]
+STOP_REASONS: frozenset[str] = frozenset({"flooded", "processes"})
 FLOOD_MESSAGE = "your code printed more than"  # how a worker killed for its output is described
 _POLL = 0.05  # seconds between checks that the worker is still alive while waiting
 _POLL_REPLIES = 0.02  # ... and between reads of replies written without the bell (a call that
@@ -140,12 +142,10 @@ class CallResult:
     output_cut: bool = False
     mutated: tuple[int, ...] = ()
     """Positions of the arguments the call changed in place (checked unless told not to)."""
-    flooded: bool = False
-    """This call alone printed more than ``Limits.muted_after``: :meth:`Worker.call_many`
-    stopped after it."""
-    left_running: bool = False
-    """This call left a process it started running (a child of the worker, none exited):
-    :meth:`Worker.call_many` stopped after it."""
+    stopped: StopReason | None = None
+    """Why :meth:`Worker.call_many` stopped after this call: ``"flooded"``, it alone printed
+    more than ``Limits.muted_after``; ``"processes"``, it left a process it started running
+    (a child of the worker, none exited)."""
     array: Any = field(default=None, compare=False, repr=False)
     """``value`` as a float64 ndarray when it came as one (a float array sent as its bytes),
     else None: compared as it is, not converted back from ``value``'s lists."""
@@ -515,9 +515,9 @@ class Worker:
         Each call is answered by a frame of its own, with its own deadline
         (``Limits.call_seconds``) and its own captured output; the result list is shorter than
         ``calls`` when the worker died (the last result says how: timeout, crash, broken
-        protocol) or when a call's output was muted (the worker stops the batch there, so a
-        flood is not repeated on every input), or when a call left a process it started running
-        (``left_running``: every later call would share the CPU with it). ``check`` as for
+        protocol) or when the worker stopped the batch after a call (``stopped``: its output
+        was muted, so a flood is not repeated on every input, or it left a process it started
+        running, with which every later call would share the CPU). ``check`` as for
         :meth:`call`. ``calls`` may
         carry its request body already encoded (an ``encoded`` attribute, from
         :func:`~slamcourse.sandbox.protocol.encode_calls`): a batch encodes its inputs once;
@@ -603,11 +603,8 @@ class Worker:
                     )
                     return results
                 stop = frame.get("stop")
-                if stop is True:
-                    results.append(replace(result, flooded=True))
-                    return results
-                if stop == "processes":
-                    results.append(replace(result, left_running=True))
+                if stop in STOP_REASONS:
+                    results.append(replace(result, stopped=stop))
                     return results
                 results.append(result)
                 if enough is not None and index + 1 < count and enough(index, result):

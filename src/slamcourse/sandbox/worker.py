@@ -475,9 +475,10 @@ class Session:
     def call_many(self, req: dict[str, Any]) -> None:
         """Answer every call of ``req["calls"]`` with a frame of its own (ids ``req["id"]``,
         ``req["id"] + 1``, ...), each sent as soon as its call returns. A call that alone
-        printed more than the output budget (``out=``) floods: its frame carries ``stop`` and
-        the batch ends there, so the flood is not repeated on every input; so does a call that
-        left a process it started running (``stop: "processes"``, :func:`_left_running`). The
+        printed more than the output budget (``out=``) floods: its frame carries ``stop:
+        "flooded"`` and the batch ends there, so the flood is not repeated on every input; so
+        does a call that left a process it started running (``stop: "processes"``,
+        :func:`_left_running`). The
         calls are argument lists, or (a pickled batch) the pickle of each call's argument
         list."""
         check = req.get("check") is not False
@@ -489,9 +490,8 @@ class Session:
             else:
                 reply = self.call(call, check)
             reply["id"] = first + index if type(first) is int else None
-            flooded = _STDOUT.written + _STDERR.written - before > _BUDGET
-            if flooded:
-                reply["stop"] = True
+            if _STDOUT.written + _STDERR.written - before > _BUDGET:
+                reply["stop"] = "flooded"
             elif _left_running():
                 reply["stop"] = "processes"
             stop = "stop" in reply
