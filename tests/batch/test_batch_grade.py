@@ -517,6 +517,8 @@ def test_what_a_stopped_task_left_is_dealt_out_long_exercises_first() -> None:
     assert _shares(frozenset({"t/text"}), code, frozenset(), 2) == [
         Part(frozenset({"t/text"}), inside=True)
     ]
+    assert shares[1].single and not shares[0].single  # (a piece of one is never asked)
+    assert not Part(frozenset({"a/code"}), inside=False).single
     for count in (1, 2, 3, 7):  # every exercise left in exactly one piece, no piece empty
         pieces = _shares(left, code, frozenset({"b/long"}), count)
         assert len(pieces) == min(count, 3) and all(p.exercises for p in pieces)

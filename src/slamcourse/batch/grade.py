@@ -588,6 +588,11 @@ class Part:
     def __contains__(self, exercise: object) -> bool:
         return (exercise in self.exercises) == self.inside
 
+    @property
+    def single(self) -> bool:
+        """One exercise: asked to stop (:func:`_to_stop`), it would have nothing to leave."""
+        return self.inside and len(self.exercises) == 1
+
 
 def grade_submission(
     path: Path,
@@ -887,7 +892,11 @@ def _grade_all(
                 slots = [slot for _, _, _, slot in running.values()]
                 idle = jobs - len(running) - sum(stop[slot] for slot in slots)
                 if not queue and idle > 0:  # a process with nothing to do: share a task's rest
-                    out = [(slot, started[slot]) for slot in slots if not stop[slot]]
+                    out = [
+                        (slot, started[slot])
+                        for _, part, _, slot in running.values()
+                        if not stop[slot] and (part is None or not part.single)
+                    ]
                     for slot in _to_stop(out, idle, time.monotonic()):
                         stop[slot] = 1
                 finished, _ = wait(running, timeout=1.0, return_when=FIRST_COMPLETED)
