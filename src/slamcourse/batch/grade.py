@@ -798,7 +798,8 @@ def grade_all(
     With several processes, each code exercise's test set, and each text exercise's answer that
     is the same for every learner, is first built once, the exercises spread over the
     processes, and handed to all of them; one process builds each set (and computes each
-    answer) when it first needs it and keeps it."""
+    answer) when it first needs it and keeps it. A process with nothing left to do takes a
+    share of what the task begun first has not graded yet (:func:`_to_stop`)."""
     if jobs < 1:
         raise UsageError("--jobs must be at least 1")
     preflight(options)
