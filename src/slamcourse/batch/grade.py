@@ -966,24 +966,17 @@ def plan(
         return tasks
     count = min(len(order), max(SPLIT_ROUNDS * jobs, math.ceil(len(order) * SPLIT_SHARE)))
     split = order[len(order) - count :]
-    pieces = _pieces(long, others, REST_PIECES)
+    rest = [ex for ex in others if ex not in long]
+    groups = [frozenset(rest[k::REST_PIECES]) for k in range(REST_PIECES - 1)]
+    groups = [g for g in groups if g]
+    pieces = [Part(g, inside=True) for g in groups]
+    pieces.append(Part(long.union(*groups), inside=False))
     first = Part(long, inside=True)
     return (
         [(i, first) for i in split]
         + tasks[: len(order) - count]
         + [(i, piece) for piece in pieces for i in split]
     )
-
-
-def _pieces(long: frozenset[str], others: Sequence[str], count: int) -> list[Part]:
-    """The rest of a split submission (all but its ``long`` exercises) in up to ``count``
-    pieces: the ``others`` (code exercises, in the course's order) not in ``long`` dealt out in
-    turn to all but the last piece, which takes every exercise not in another part (with
-    ``count`` above the number of ``others``: one piece per code exercise, then the rest)."""
-    rest = [ex for ex in others if ex not in long]
-    groups = [frozenset(rest[k::count]) for k in range(count - 1)]
-    groups = [g for g in groups if g]
-    return [*(Part(g, inside=True) for g in groups), Part(long.union(*groups), inside=False)]
 
 
 STEAL_AFTER = 1.0

@@ -36,12 +36,18 @@ LIMIT_MAXIMA: dict[str, float] = {
     "memory_bytes": 4 << 30,
 }
 _WHOLE_LIMITS = ("cpu_seconds", "memory_bytes")
-STOPPED = {  # why the worker stopped a learner's calls (CallResult.stopped), as the verdict says it
-    "flooded": "Your function printed more than 1 MiB of output in one call (test input {at} of "
-    "{n}), so grading stopped there: remove or shorten the print statements and check again.",
-    "processes": "Your function returned while a process it started was still running (test "
-    "input {at} of {n}), so grading stopped there: wait for every process it starts before "
-    "returning (or start none).",
+STOPPED = {  # why the worker stopped a learner's calls (CallResult.stopped): (details key, verdict)
+    "flooded": (
+        "flooded",
+        "Your function printed more than 1 MiB of output in one call (test input {at} of {n}), "
+        "so grading stopped there: remove or shorten the print statements and check again.",
+    ),
+    "processes": (
+        "left_running",
+        "Your function returned while a process it started was still running (test input {at} "
+        "of {n}), so grading stopped there: wait for every process it starts before returning "
+        "(or start none).",
+    ),
 }
 
 
@@ -420,9 +426,10 @@ class CodeKind(Kind):
             note = "\n\nYour code printed a lot: output beyond the first 1 MiB per stream was cut."
         if outcome.stopped is not None:  # (the checks stopped there: said, unless one failed)
             reason, at = outcome.stopped
-            details["flooded" if reason == "flooded" else "left_running"] = at
+            key, message = STOPPED[reason]
+            details[key] = at
             if failure is None:
-                return Verdict.wrong(STOPPED[reason].format(at=at, n=len(tests.cases)), **details)
+                return Verdict.wrong(message.format(at=at, n=len(tests.cases)), **details)
         if failure is None:
             return Verdict.ok(
                 f"All {visible_total} test inputs passed, edge cases and boundary inputs "

@@ -36,7 +36,7 @@ from collections.abc import Sequence
 from concurrent.futures import Future, ThreadPoolExecutor
 from dataclasses import dataclass, field, fields, replace
 from types import TracebackType
-from typing import Any, Literal
+from typing import Any, Literal, get_args
 
 from slamcourse.errors import GraderError, SandboxError
 from slamcourse.sandbox.isolation import (
@@ -77,7 +77,7 @@ LoadStatus = Literal[
 CallStatus = Literal["ok", "raised", "timeout", "crashed", "protocol_error"]
 Fatal = Literal["timeout", "crashed", "protocol_error"]
 StopReason = Literal["flooded", "processes"]
-STOP_REASONS: frozenset[str] = frozenset({"flooded", "processes"})
+STOP_REASONS: frozenset[str] = frozenset(get_args(StopReason))
 FLOOD_MESSAGE = "your code printed more than"  # how a worker killed for its output is described
 _POLL = 0.05  # seconds between checks that the worker is still alive while waiting
 _POLL_REPLIES = 0.02  # ... and between reads of replies written without the bell (a call that

@@ -478,9 +478,8 @@ class Session:
         printed more than the output budget (``out=``) floods: its frame carries ``stop:
         "flooded"`` and the batch ends there, so the flood is not repeated on every input; so
         does a call that left a process it started running (``stop: "processes"``,
-        :func:`_left_running`). The
-        calls are argument lists, or (a pickled batch) the pickle of each call's argument
-        list."""
+        :func:`_left_running`). The calls are argument lists, or (a pickled batch) the pickle
+        of each call's argument list."""
         check = req.get("check") is not False
         first = req.get("id")
         for index, call in enumerate(req["calls"]):
